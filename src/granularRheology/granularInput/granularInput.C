@@ -1,0 +1,139 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+#include "granularInput.H"
+
+// * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
+
+void Foam::granularInput::invalid
+(
+    const dictionary& dict,
+    const word& keyword,
+    const scalar value,
+    const string& requirement
+)
+{
+    FatalIOErrorInFunction(dict)
+        << "Invalid value of keyword '" << keyword << "' in dictionary "
+        << dict.name() << ": " << keyword << " = " << value
+        << " (" << requirement.c_str() << ")" << nl
+        << exit(FatalIOError);
+
+    // exit() returns only when FatalIOError throws instead of exiting
+    ::abort();
+}
+
+
+namespace
+{
+    Foam::dimensionedScalar readChecked
+    (
+        const Foam::dictionary& dict,
+        const Foam::word& keyword,
+        const Foam::dimensionSet& dims,
+        const bool strict
+    )
+    {
+        using namespace Foam;
+
+        if (!dict.found(keyword))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Missing keyword '" << keyword << "' in dictionary "
+                << dict.name() << nl << exit(FatalIOError);
+        }
+
+        const dimensionedScalar value(keyword, dims, dict);
+
+        if (!std::isfinite(value.value()))
+        {
+            granularInput::invalid(dict, keyword, value.value(), "not finite");
+        }
+        if (strict ? value.value() <= 0 : value.value() < 0)
+        {
+            granularInput::invalid
+            (
+                dict, keyword, value.value(), strict ? "must be > 0" : "must be >= 0"
+            );
+        }
+        return value;
+    }
+
+    Foam::dimensionedScalar readCheckedOrDefault
+    (
+        const Foam::dictionary& dict,
+        const Foam::word& keyword,
+        const Foam::dimensionSet& dims,
+        const bool strict,
+        const Foam::scalar deflt
+    )
+    {
+        if (!dict.found(keyword))
+        {
+            return Foam::dimensionedScalar(keyword, dims, deflt);
+        }
+        return readChecked(dict, keyword, dims, strict);
+    }
+}
+
+
+Foam::dimensionedScalar Foam::granularInput::readPositive
+(
+    const dictionary& dict,
+    const word& keyword,
+    const dimensionSet& dims
+)
+{
+    return readChecked(dict, keyword, dims, true);
+}
+
+
+Foam::dimensionedScalar Foam::granularInput::readPositiveOrDefault
+(
+    const dictionary& dict,
+    const word& keyword,
+    const dimensionSet& dims,
+    const scalar deflt
+)
+{
+    return readCheckedOrDefault(dict, keyword, dims, true, deflt);
+}
+
+
+Foam::dimensionedScalar Foam::granularInput::readNonNegative
+(
+    const dictionary& dict,
+    const word& keyword,
+    const dimensionSet& dims
+)
+{
+    return readChecked(dict, keyword, dims, false);
+}
+
+
+Foam::dimensionedScalar Foam::granularInput::readNonNegativeOrDefault
+(
+    const dictionary& dict,
+    const word& keyword,
+    const dimensionSet& dims,
+    const scalar deflt
+)
+{
+    return readCheckedOrDefault(dict, keyword, dims, false, deflt);
+}
+
+
+const Foam::dictionary& Foam::granularInput::coeffsDict
+(
+    const dictionary& dict,
+    const word& modelType
+)
+{
+    return dict.optionalSubDict(modelType + "Coeffs");
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,252 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+#include "granularRheology.H"
+#include "granularInput.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(granularRheology, 0);
+}
+
+const Foam::Enum<Foam::granularRheology::mixtureRule>
+Foam::granularRheology::mixtureRuleNames
+({
+    { mixtureRule::weightedFriction, "weightedFriction" },
+    { mixtureRule::weightedParameters, "weightedParameters" },
+});
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::granularRheology::granularRheology(const dictionary& dict)
+:
+    dict_(dict),
+    rhoStar_(granularInput::readPositive(dict, "rhoStar", dimDensity)),
+    Phi_(granularInput::readPositive(dict, "Phi")),
+    etaMax_
+    (
+        granularInput::readPositive(dict, "etaMax", dimPressure*dimTime)
+    ),
+    pMin_
+    (
+        granularInput::readPositiveOrDefault(dict, "pMin", dimPressure, 1e-8)
+    ),
+    rule_
+    (
+        mixtureRuleNames.getOrDefault
+        (
+            "mixtureRule", dict, mixtureRule::weightedFriction
+        )
+    )
+{
+    if (Phi_.value() > 1)
+    {
+        granularInput::invalid(dict, "Phi", Phi_.value(), "must be <= 1");
+    }
+
+    const dictionary& grainsDict = dict.subDict("grains");
+    names_ = grainsDict.toc();
+
+    if (names_.empty())
+    {
+        FatalIOErrorInFunction(grainsDict)
+            << "No grain phase in " << grainsDict.name()
+            << ": give one sub-dictionary per grain phase" << nl
+            << exit(FatalIOError);
+    }
+
+    d_.setSize(names_.size());
+    laws_.setSize(names_.size());
+
+    forAll(names_, i)
+    {
+        if (!grainsDict.isDict(names_[i]))
+        {
+            FatalIOErrorInFunction(grainsDict)
+                << "Entry '" << names_[i] << "' of " << grainsDict.name()
+                << " is not a grain phase sub-dictionary" << nl
+                << exit(FatalIOError);
+        }
+        const dictionary& phaseDict = grainsDict.subDict(names_[i]);
+        d_[i] = granularInput::readPositive(phaseDict, "d", dimLength).value();
+        laws_.set(i, frictionLaw::New(phaseDict));
+    }
+
+    if (rule_ == mixtureRule::weightedParameters)
+    {
+        forAll(laws_, i)
+        {
+            if (laws_[i].type() != laws_[0].type())
+            {
+                FatalIOErrorInFunction(laws_[i].dict())
+                    << "mixtureRule weightedParameters (3.4) needs one "
+                    << "friction law for all grains: frictionLaw "
+                    << laws_[i].type() << " in " << laws_[i].dict().name()
+                    << " differs from " << laws_[0].type() << " of "
+                    << names_[0] << nl << exit(FatalIOError);
+            }
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::granularRheology::grainFractions
+(
+    const UPtrList<const scalarField>& alphas,
+    PtrList<scalarField>& w
+) const
+{
+    const label n = nGrains();
+    const label nPoints = alphas[0].size();
+
+    w.setSize(n);
+    forAll(w, k)
+    {
+        if (!w.set(k) || w[k].size() != nPoints)
+        {
+            w.set(k, new scalarField(nPoints));
+        }
+    }
+
+    for (label i = 0; i < nPoints; ++i)
+    {
+        scalar sum = 0;
+        for (label k = 0; k < n; ++k)
+        {
+            sum += max(alphas[k][i], scalar(0));
+        }
+
+        if (sum > ROOTVSMALL)
+        {
+            for (label k = 0; k < n; ++k)
+            {
+                w[k][i] = max(alphas[k][i], scalar(0))/sum;
+            }
+        }
+        else
+        {
+            for (label k = 0; k < n; ++k)
+            {
+                w[k][i] = 1.0/n;
+            }
+        }
+    }
+}
+
+
+void Foam::granularRheology::meanDiameter
+(
+    const UPtrList<const scalarField>& w,
+    scalarField& dbar
+) const
+{
+    // (3.1)
+    dbar = 0;
+    forAll(d_, k)
+    {
+        dbar += w[k]*d_[k];
+    }
+}
+
+
+void Foam::granularRheology::strainRateNorm
+(
+    const symmTensorField& D,
+    scalarField& normD
+)
+{
+    // (2.4)
+    forAll(D, i)
+    {
+        normD[i] = sqrt(0.5*(D[i] && D[i]));
+    }
+}
+
+
+void Foam::granularRheology::inertialNumber
+(
+    const scalarField& normD,
+    const scalarField& p,
+    const scalarField& dbar,
+    scalarField& I
+) const
+{
+    // (3.2)
+    const scalar rhoStar = rhoStar_.value();
+    forAll(I, i)
+    {
+        I[i] = 2*dbar[i]*normD[i]/sqrt(pressure(p[i])/rhoStar);
+    }
+}
+
+
+void Foam::granularRheology::friction
+(
+    const scalarField& I,
+    const UPtrList<const scalarField>& w,
+    scalarField& mu,
+    scalarField* dmudI
+) const
+{
+    if (rule_ == mixtureRule::weightedParameters)
+    {
+        // (3.4)
+        UPtrList<const frictionLaw> laws(laws_.size());
+        forAll(laws_, k)
+        {
+            laws.set(k, &laws_[k]);
+        }
+        laws_[0].weightedCoeffs(I, laws, w, mu, dmudI);
+        return;
+    }
+
+    // (3.3)
+    scalarField muk(I.size());
+    mu = 0;
+    if (dmudI)
+    {
+        *dmudI = 0;
+    }
+    forAll(laws_, k)
+    {
+        laws_[k].mu(I, muk);
+        mu += w[k]*muk;
+        if (dmudI)
+        {
+            laws_[k].dmudI(I, muk);
+            *dmudI += w[k]*muk;
+        }
+    }
+}
+
+
+void Foam::granularRheology::viscosity
+(
+    const scalarField& mu,
+    const scalarField& p,
+    const scalarField& normD,
+    scalarField& eta
+) const
+{
+    // (2.3) capped by (4.12), compared before dividing so that |D| = 0 is safe
+    const scalar etaMax = etaMax_.value();
+    forAll(eta, i)
+    {
+        const scalar tau = mu[i]*pressure(p[i]);
+        eta[i] =
+            (tau >= 2*normD[i]*etaMax)
+          ? etaMax
+          : tau/(2*normD[i]);
+    }
+}
+
+
+// ************************************************************************* //
