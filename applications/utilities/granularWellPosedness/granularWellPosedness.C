@@ -1,0 +1,164 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+
+Application
+    granularWellPosedness
+
+Group
+    grpGranularUtilities
+
+Description
+    Prints, for each grain phase of a rheology dictionary, the ranges of
+    inertial number in which the incompressible mu(I)-rheology is well posed
+    by (2.6) of Barker et al. (2021) (ERRATA item 1), and I_max.  For the
+    partially regularised law (2.8) it also prints the range of the
+    unregularised law (2.7) with the same mu_s, mu_d, I_0, whose lower bound
+    is where I_1 belongs.
+
+Usage
+    granularWellPosedness [-dict file] [-Imin 1e-9] [-Imax 1e4]
+
+    The default dictionary is constant/granularProperties of the case.
+
+\*---------------------------------------------------------------------------*/
+
+#include "argList.H"
+#include "Time.H"
+#include "IOdictionary.H"
+#include "granularRheology.H"
+#include "BarkerGray.H"
+#include "Jop.H"
+#include "wellPosedness.H"
+#include "IStringStream.H"
+
+using namespace Foam;
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+void printRanges
+(
+    const frictionLaw& law,
+    const scalar Imin,
+    const scalar Imax,
+    const word& indent
+)
+{
+    const List<Pair<scalar>> ranges(wellPosedness::ranges(law, Imin, Imax));
+
+    if (ranges.empty())
+    {
+        Info<< indent << "ill posed for every I in [" << Imin << ", " << Imax
+            << "]" << nl;
+        return;
+    }
+
+    for (const Pair<scalar>& r : ranges)
+    {
+        Info<< indent << "well posed for I in [";
+        if (r.first() == Imin && law.creeps())
+        {
+            Info<< "0";
+        }
+        else
+        {
+            Info<< r.first();
+        }
+        Info<< ", " << r.second() << "]";
+        if (r.second() == Imax)
+        {
+            Info<< " (to the end of the scan)";
+        }
+        Info<< nl;
+    }
+
+    const scalar upper = ranges.last().second();
+    if (upper < Imax)
+    {
+        Info<< indent << "I_max = " << upper << nl;
+    }
+}
+
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Well-posed inertial-number ranges of each grain phase's friction law"
+        " (Barker et al. 2021, (2.6))"
+    );
+    argList::noParallel();
+    argList::addOption
+    (
+        "dict", "file", "Rheology dictionary [constant/granularProperties]"
+    );
+    argList::addOption("Imin", "scalar", "Lower end of the scan [1e-9]");
+    argList::addOption("Imax", "scalar", "Upper end of the scan [1e4]");
+
+    #include "setRootCase.H"
+    #include "createTime.H"
+
+    const scalar Imin = args.getOrDefault<scalar>("Imin", 1e-9);
+    const scalar Imax = args.getOrDefault<scalar>("Imax", 1e4);
+
+    fileName dictPath(runTime.constant()/"granularProperties");
+    if (args.found("dict"))
+    {
+        dictPath = args.get<fileName>("dict").expand();
+        if (!dictPath.isAbsolute())
+        {
+            dictPath = args.path()/dictPath;
+        }
+    }
+
+    const IOdictionary dict
+    (
+        IOobject
+        (
+            dictPath,
+            runTime,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+
+    const granularRheology rheology(dict);
+
+    Info<< nl << "Well-posedness (2.6) of " << dictPath << nl;
+
+    forAll(rheology.names(), i)
+    {
+        const frictionLaw& law = rheology.law(i);
+        Info<< nl << "grain phase " << rheology.names()[i]
+            << ": frictionLaw " << law.type() << nl;
+
+        printRanges(law, Imin, Imax, "    ");
+
+        if (isA<frictionLaws::BarkerGray>(law))
+        {
+            const auto& c = refCast<const frictionLaws::BarkerGray>(law).coeffs();
+            OStringStream os;
+            os.precision(17);
+            os  << "frictionLaw Jop; JopCoeffs { mus "
+                << c[frictionLaws::BarkerGray::MUS]
+                << "; mud " << c[frictionLaws::BarkerGray::MUD]
+                << "; I0 " << c[frictionLaws::BarkerGray::I0] << "; }";
+            IStringStream is(os.str());
+            const frictionLaws::Jop jop((dictionary(is)));
+
+            Info<< "    unregularised law (2.7) with the same mus, mud, I0:"
+                << nl;
+            printRanges(jop, Imin, Imax, "        ");
+            Info<< "    I1 = " << c[frictionLaws::BarkerGray::I1] << nl;
+        }
+    }
+
+    Info<< nl << "End" << nl << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //
