@@ -1,0 +1,750 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+#include "granularMixture.H"
+#include "granularInput.H"
+#include "wellPosedness.H"
+#include "MULES.H"
+#include "subCycle.H"
+#include "upwind.H"
+#include "fvcGrad.H"
+#include "fvcFlux.H"
+#include "fvcSnGrad.H"
+#include "fvcSurfaceIntegrate.H"
+#include "surfaceInterpolate.H"
+#include "zeroGradientFvPatchFields.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(granularMixture, 0);
+}
+
+const Foam::Enum<Foam::granularMixture::sharpening>
+Foam::granularMixture::sharpeningNames
+({
+    { sharpening::segregation, "segregation" },
+    { sharpening::counterGradient, "counterGradient" },
+    { sharpening::none, "none" },
+});
+
+
+namespace
+{
+    //- A state field of the mixture, zero gradient on the boundaries
+    Foam::volScalarField* stateField
+    (
+        const Foam::fvMesh& mesh,
+        const Foam::word& name,
+        const Foam::dimensionSet& dims,
+        const bool write
+    )
+    {
+        using namespace Foam;
+        return new volScalarField
+        (
+            IOobject
+            (
+                name,
+                mesh.time().timeName(),
+                mesh,
+                IOobject::NO_READ,
+                write ? IOobject::AUTO_WRITE : IOobject::NO_WRITE
+            ),
+            mesh,
+            dimensionedScalar(dims, Zero),
+            zeroGradientFvPatchScalarField::typeName
+        );
+    }
+}
+
+
+// * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * * //
+
+void Foam::granularMixture::readAir()
+{
+    if (!isDict("air"))
+    {
+        FatalIOErrorInFunction(*this)
+            << "Missing sub-dictionary 'air' in " << name()
+            << " (name, rho, eta and the sharpening of the air)" << nl
+            << exit(FatalIOError);
+    }
+    const dictionary& dict = subDict("air");
+
+    airName_ = dict.getOrDefault<word>("name", "air");
+    rhoAir_ = granularInput::readPositive(dict, "rho", dimDensity);
+    etaAir_ = granularInput::readPositive(dict, "eta", dimPressure*dimTime);
+    sharpening_ =
+        sharpeningNames.getOrDefault("sharpening", dict, sharpening::segregation);
+
+    fAir_ = dimensionedScalar(dimVelocity, Zero);
+    eAir_ = Zero;
+    cAlpha_ = 0;
+
+    if (sharpening_ == sharpening::segregation)
+    {
+        fAir_ = granularInput::readNonNegative(dict, "f", dimVelocity);
+
+        ITstream& is = dict.lookup("direction");
+        token t(is);
+        if (t.isWord())
+        {
+            if (t.wordToken() == "gravity")
+            {
+                eAir_ = gHat();
+            }
+            else if (t.wordToken() == "antiGravity")
+            {
+                eAir_ = -gHat();
+            }
+            else
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Invalid value of keyword 'direction' in dictionary "
+                    << dict.name() << ": direction = " << t.wordToken()
+                    << " (a vector, gravity or antiGravity)" << nl
+                    << exit(FatalIOError);
+            }
+        }
+        else
+        {
+            is.putBack(t);
+            vector e;
+            is >> e;
+            if (mag(e) < SMALL)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Invalid value of keyword 'direction' in dictionary "
+                    << dict.name() << ": direction = " << e
+                    << " (a vector of nonzero length)" << nl
+                    << exit(FatalIOError);
+            }
+            eAir_ = e/mag(e);
+        }
+        if (fAir_.value() > 0 && mag(eAir_) < SMALL)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Invalid value of keyword 'direction' in dictionary "
+                << dict.name() << ": direction = " << t
+                << " but g = " << g_.value() << " is zero" << nl
+                << exit(FatalIOError);
+        }
+    }
+    else if (sharpening_ == sharpening::counterGradient)
+    {
+        cAlpha_ = granularInput::readNonNegative(dict, "cAlpha").value();
+    }
+}
+
+
+void Foam::granularMixture::checkFractions() const
+{
+    const scalar tol = 1e-6;
+    scalarField sum(mesh_.nCells(), Zero);
+
+    for (const volScalarField& alpha : alphas_)
+    {
+        const scalar lo = gMin(alpha.primitiveField());
+        const scalar hi = gMax(alpha.primitiveField());
+        if (lo < -tol || hi > 1 + tol)
+        {
+            FatalErrorInFunction
+                << "Invalid initial field " << alpha.objectPath()
+                << ": values in [" << lo << ", " << hi << "], outside [0, 1]"
+                << nl << exit(FatalError);
+        }
+        sum += alpha.primitiveField();
+    }
+
+    const scalar err = gMax(mag(sum - 1.0)());
+    if (err > tol)
+    {
+        FatalErrorInFunction
+            << "Invalid initial phase fractions in "
+            << mesh_.time().timePath() << ": the fractions of "
+            << alphas_.size() << " phases (alpha.*) must sum to 1, but"
+            << " |sum - 1| reaches " << err << " (tolerance " << tol << ")"
+            << nl << exit(FatalError);
+    }
+}
+
+
+void Foam::granularMixture::calcG()
+{
+    surfaceScalarField geom(mesh_.magSf()*mesh_.deltaCoeffs());
+    G_ = 0.5*fvc::surfaceSum(geom)().primitiveField()/mesh_.V().field();
+}
+
+
+void Foam::granularMixture::calcMixture()
+{
+    const volScalarField& alphaAir = alphas_[0];
+    const dimensionedScalar rhoGrains(rheology_.rhoGrains());
+
+    // (4.7a,b): the grains share one density and one viscosity
+    rho_ = alphaAir*rhoAir_ + (1 - alphaAir)*rhoGrains;
+    eta_ = alphaAir*etaAir_ + (1 - alphaAir)*etaGranular_;
+    nu_ = eta_/rho_;
+}
+
+
+Foam::vector Foam::granularMixture::gHat() const
+{
+    const scalar magg = mag(g_.value());
+    return magg > SMALL ? g_.value()/magg : vector::zero;
+}
+
+
+void Foam::granularMixture::zeroUncoupled(surfaceScalarField& sf)
+{
+    for (fvsPatchScalarField& psf : sf.boundaryFieldRef())
+    {
+        if (!psf.coupled())
+        {
+            psf = Zero;
+        }
+    }
+}
+
+
+void Foam::granularMixture::relativeFluxes
+(
+    List<labelPair>& pairs,
+    PtrList<surfaceScalarField>& phirs
+) const
+{
+    pairs.clear();
+    phirs.clear();
+
+    // Grain pairs: the smaller phase moves along g (2.13), (2.19)
+    const surfaceScalarField gSf(gHat() & mesh_.Sf());
+    for (label k = 0; k < segregation_.size(); ++k)
+    {
+        const segregationVelocity& law = segregation_[k];
+        pairs.append(labelPair(1 + law.small(), 1 + law.large()));
+        phirs.append(new surfaceScalarField(fvc::interpolate(f_[k])*gSf));
+    }
+
+    // Air with each grain phase
+    if (sharpening_ == sharpening::segregation && fAir_.value() > 0)
+    {
+        const surfaceScalarField phirAir(fAir_*(eAir_ & mesh_.Sf()));
+        for (label i = 1; i < alphas_.size(); ++i)
+        {
+            pairs.append(labelPair(0, i));
+            phirs.append(new surfaceScalarField(phirAir));
+        }
+    }
+    else if (sharpening_ == sharpening::counterGradient && cAlpha_ > 0)
+    {
+        // (4.9), as multiphaseInterFoam's compression
+        surfaceScalarField phic(mag(phi_/mesh_.magSf()));
+        phic = min(cAlpha_*phic, max(phic));
+
+        const dimensionedScalar deltaN
+        (
+            "deltaN",
+            1e-8/pow(average(mesh_.V()), 1.0/3.0)
+        );
+
+        const volScalarField& a = alphas_[0];
+        for (label i = 1; i < alphas_.size(); ++i)
+        {
+            const volScalarField& b = alphas_[i];
+            surfaceVectorField gradf
+            (
+                fvc::interpolate(b)*fvc::interpolate(fvc::grad(a))
+              - fvc::interpolate(a)*fvc::interpolate(fvc::grad(b))
+            );
+            pairs.append(labelPair(0, i));
+            phirs.append
+            (
+                new surfaceScalarField
+                (
+                    phic*((gradf/(mag(gradf) + deltaN)) & mesh_.Sf())
+                )
+            );
+        }
+    }
+
+    for (surfaceScalarField& phir : phirs)
+    {
+        zeroUncoupled(phir);
+    }
+}
+
+
+void Foam::granularMixture::solveAlphas()
+{
+    const word alphaScheme("div(phi,alpha)");
+    const word alpharScheme("div(phirb,alpha)");
+    const label nPhases = alphas_.size();
+
+    // The bounded-advection, segregation and diffusion fluxes of each phase
+    PtrList<surfaceScalarField> alphaPhis(nPhases);
+    forAll(alphas_, i)
+    {
+        alphaPhis.set
+        (
+            i,
+            new surfaceScalarField
+            (
+                "alphaPhi." + alphas_[i].name(),
+                fvc::flux(phi_, alphas_[i], alphaScheme)
+            )
+        );
+    }
+
+    // (2.13): one flux per pair, +F for i and -F for j
+    List<labelPair> pairs;
+    PtrList<surfaceScalarField> phirs;
+    relativeFluxes(pairs, phirs);
+
+    scalarField rate(mesh_.nCells(), Zero);
+    forAll(pairs, k)
+    {
+        const volScalarField& ai = alphas_[pairs[k].first()];
+        const volScalarField& aj = alphas_[pairs[k].second()];
+        const surfaceScalarField F
+        (
+            fvc::flux(-fvc::flux(-phirs[k], aj, alpharScheme), ai, alpharScheme)
+        );
+        alphaPhis[pairs[k].first()] += F;
+        alphaPhis[pairs[k].second()] -= F;
+        rate = max(rate, fvc::surfaceSum(mag(phirs[k]))().primitiveField());
+    }
+    segregationRate_ = 0.5*rate/mesh_.V().field();
+
+    // (2.15): D^i = D_ij (phi^j grad phi^i - phi^i grad phi^j), a flux -D^i
+    for (label k = 0; k < diffusion_.size(); ++k)
+    {
+        const label i = 1 + diffusion_[k].small();
+        const label j = 1 + diffusion_[k].large();
+        const volScalarField& ai = alphas_[i];
+        const volScalarField& aj = alphas_[j];
+
+        surfaceScalarField Fd
+        (
+            -fvc::interpolate(D_[k])*mesh_.magSf()
+           *(
+                fvc::interpolate(aj)*fvc::snGrad(ai)
+              - fvc::interpolate(ai)*fvc::snGrad(aj)
+            )
+        );
+        zeroUncoupled(Fd);
+        alphaPhis[i] += Fd;
+        alphaPhis[j] -= Fd;
+    }
+
+    // Bound each phase, then make the corrections sum to zero
+    forAll(alphas_, i)
+    {
+        MULES::limit
+        (
+            1.0/mesh_.time().deltaTValue(),
+            geometricOneField(),
+            alphas_[i],
+            phi_,
+            alphaPhis[i],
+            zeroField(),
+            zeroField(),
+            oneField(),
+            zeroField(),
+            true
+        );
+    }
+    MULES::limitSum(alphaPhis);
+
+    rhoPhi_ = dimensionedScalar(rhoPhi_.dimensions(), Zero);
+    const dimensionedScalar rhoGrains(rheology_.rhoGrains());
+
+    scalarField sumAlpha(mesh_.nCells(), Zero);
+    forAll(alphas_, i)
+    {
+        volScalarField& alpha = alphas_[i];
+        surfaceScalarField& alphaPhi = alphaPhis[i];
+        alphaPhi += upwind<scalar>(mesh_, phi_).flux(alpha);
+
+        MULES::explicitSolve(geometricOneField(), alpha, alphaPhi);
+
+        rhoPhi_ += alphaPhi*(i == 0 ? rhoAir_ : rhoGrains);
+        sumAlpha += alpha.primitiveField();
+    }
+
+    // Remove the round-off drift of the sum, as multiphaseInterFoam does
+    const scalarField sumCorr(1.0 - sumAlpha);
+    for (volScalarField& alpha : alphas_)
+    {
+        alpha.primitiveFieldRef() += alpha.primitiveField()*sumCorr;
+        alpha.correctBoundaryConditions();
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::granularMixture::granularMixture
+(
+    const volVectorField& U,
+    const surfaceScalarField& phi
+)
+:
+    IOdictionary
+    (
+        IOobject
+        (
+            "granularProperties",
+            U.time().constant(),
+            U.db(),
+            IOobject::MUST_READ_IF_MODIFIED,
+            IOobject::NO_WRITE
+        )
+    ),
+    transportModel(),
+    mesh_(U.mesh()),
+    U_(U),
+    phi_(phi),
+    g_(meshObjects::gravity::New(mesh_.time())),
+    rheology_(*this),
+    airName_(),
+    rhoAir_(dimDensity, Zero),
+    etaAir_(dimPressure*dimTime, Zero),
+    sharpening_(sharpening::segregation),
+    fAir_(dimVelocity, Zero),
+    eAir_(Zero),
+    cAlpha_(0),
+    alphas_(),
+    segregation_(*this, "segregation", rheology_),
+    diffusion_(*this, "diffusion", rheology_),
+    rhoPhi_
+    (
+        IOobject
+        (
+            "rhoPhi",
+            mesh_.time().timeName(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        mesh_,
+        dimensionedScalar(dimMass/dimTime, Zero)
+    ),
+    pGranular_(*stateField(mesh_, "pGranular", dimPressure, true)),
+    shearRate_(*stateField(mesh_, "shearRate", inv(dimTime), true)),
+    dbar_(*stateField(mesh_, "dbar", dimLength, true)),
+    I_(*stateField(mesh_, "I", dimless, true)),
+    etaGranular_
+    (
+        *stateField(mesh_, "etaGranular", dimPressure*dimTime, true)
+    ),
+    illPosed_(*stateField(mesh_, "illPosed", dimless, true)),
+    rho_(*stateField(mesh_, "rho", dimDensity, false)),
+    eta_(*stateField(mesh_, "eta", dimPressure*dimTime, false)),
+    nu_(*stateField(mesh_, "nu", dimViscosity, false)),
+    G_(),
+    segregationRate_(mesh_.nCells(), Zero)
+{
+    readAir();
+
+    const wordList& grains = rheology_.names();
+    if (grains.size() < 2)
+    {
+        FatalIOErrorInFunction(*this)
+            << "Invalid value of keyword 'grains' in dictionary " << name()
+            << ": " << grains.size() << " grain phase(s) " << grains
+            << " (at least 2 are needed)" << nl << exit(FatalIOError);
+    }
+    if (grains.found(airName_))
+    {
+        FatalIOErrorInFunction(*this)
+            << "Invalid value of keyword 'name' in dictionary "
+            << subDict("air").name() << ": name = " << airName_
+            << " is also a grain phase " << grains << nl
+            << exit(FatalIOError);
+    }
+
+    alphas_.setSize(1 + grains.size());
+    forAll(alphas_, i)
+    {
+        const word phaseName(i == 0 ? airName_ : grains[i - 1]);
+        alphas_.set
+        (
+            i,
+            new volScalarField
+            (
+                IOobject
+                (
+                    IOobject::groupName("alpha", phaseName),
+                    mesh_.time().timeName(),
+                    mesh_,
+                    IOobject::MUST_READ,
+                    IOobject::AUTO_WRITE
+                ),
+                mesh_
+            )
+        );
+    }
+    checkFractions();
+
+    forAll(segregation_, k)
+    {
+        f_.append(stateField(mesh_, "f" + Foam::name(k), dimVelocity, false));
+    }
+    forAll(diffusion_, k)
+    {
+        D_.append
+        (
+            stateField(mesh_, "D" + Foam::name(k), dimArea/dimTime, false)
+        );
+    }
+
+    calcG();
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::tmp<Foam::surfaceScalarField>
+Foam::granularMixture::surfaceTensionForce() const
+{
+    return tmp<surfaceScalarField>::New
+    (
+        IOobject
+        (
+            "surfaceTensionForce",
+            mesh_.time().timeName(),
+            mesh_
+        ),
+        mesh_,
+        dimensionedScalar(dimForce/dimVolume, Zero)
+    );
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::granularMixture::nearInterface() const
+{
+    auto tnear = tmp<volScalarField>::New
+    (
+        IOobject("nearInterface", mesh_.time().timeName(), mesh_),
+        mesh_,
+        dimensionedScalar(dimless, Zero)
+    );
+
+    for (const volScalarField& alpha : alphas_)
+    {
+        tnear.ref() = max(tnear(), pos0(alpha - 0.01)*pos0(0.99 - alpha));
+    }
+    return tnear;
+}
+
+
+Foam::granularMixture::cflParts
+Foam::granularMixture::cfl(const scalar deltaT) const
+{
+    if (mesh_.changing())
+    {
+        const_cast<granularMixture&>(*this).calcG();
+    }
+
+    const scalarField conv
+    (
+        0.5*fvc::surfaceSum(mag(phi_))().primitiveField()/mesh_.V().field()
+    );
+    const scalarField visc(nu_.primitiveField()*G_);
+
+    scalarField diff(mesh_.nCells(), Zero);
+    for (const volScalarField& D : D_)
+    {
+        diff += D.primitiveField()*G_;
+    }
+
+    const scalarField total(conv + visc + segregationRate_ + diff);
+    const scalar maxTotal = gMax(total);
+
+    cflParts parts;
+    parts.convective = gMax(conv)*deltaT;
+    parts.viscous = gMax(visc)*deltaT;
+    parts.segregation = gMax(segregationRate_)*deltaT;
+    parts.diffusion = gMax(diff)*deltaT;
+    parts.total = maxTotal*deltaT;
+
+    // The largest part in the cell of the largest total (any processor)
+    FixedList<scalar, 4> local(Zero);
+    if (total.size())
+    {
+        const label c = findMax(total);
+        local = {conv[c], visc[c], segregationRate_[c], diff[c]};
+        if (total[c] < maxTotal)
+        {
+            local = Zero;
+        }
+    }
+    for (scalar& x : local)
+    {
+        reduce(x, maxOp<scalar>());
+    }
+    static const wordList partNames
+        ({"convective", "viscous", "segregation", "diffusion"});
+    parts.limiting = partNames[findMax(local)];
+
+    return parts;
+}
+
+
+void Foam::granularMixture::correctRheology(const volScalarField& p)
+{
+    const label nCells = mesh_.nCells();
+
+    // Pressure relative to the air (see the class description)
+    {
+        const volScalarField pAir(p - rhoAir_*(g_ & mesh_.C()));
+        const scalarField pureAir(pos0(alphas_[0].primitiveField() - 0.99));
+        const scalarField V(mesh_.V().field()*pureAir);
+        const scalar volAir = gSum(V);
+        const scalar c =
+            volAir > 0 ? gSum(V*pAir.primitiveField())/volAir : 0;
+
+        pGranular_.primitiveFieldRef() = max
+        (
+            pAir.primitiveField() - c,
+            rheology_.pMin().value()
+        );
+        pGranular_.correctBoundaryConditions();
+    }
+
+    // (2.4): |D| of the previous iterate of U, shear rate 2|D|
+    scalarField normD(nCells);
+    rheology_.strainRateNorm(symm(fvc::grad(U_))().primitiveField(), normD);
+    shearRate_.primitiveFieldRef() = 2*normD;
+
+    // Grain-volume fractions and (3.1)
+    UPtrList<const scalarField> grainAlphas(alphas_.size() - 1);
+    for (label i = 1; i < alphas_.size(); ++i)
+    {
+        grainAlphas.set(i - 1, &alphas_[i].primitiveField());
+    }
+    PtrList<scalarField> w;
+    rheology_.grainFractions(grainAlphas, w);
+    UPtrList<const scalarField> wc(w.size());
+    forAll(w, k)
+    {
+        wc.set(k, &w[k]);
+    }
+    rheology_.meanDiameter(wc, dbar_.primitiveFieldRef());
+
+    // (3.2), (3.3)/(3.4), (2.3) with (4.12), and (2.6)
+    const scalarField& pg = pGranular_.primitiveField();
+    rheology_.inertialNumber(normD, pg, dbar_.primitiveField(), I_.primitiveFieldRef());
+
+    scalarField mu(nCells);
+    scalarField dmudI(nCells);
+    rheology_.friction(I_.primitiveField(), wc, mu, &dmudI);
+    rheology_.viscosity(mu, pg, normD, etaGranular_.primitiveFieldRef());
+    wellPosedness::indicator
+    (
+        I_.primitiveField(), mu, dmudI, illPosed_.primitiveFieldRef()
+    );
+
+    // Segregation and diffusion of the grain pairs (section 3.3)
+    const granularState state
+    {
+        shearRate_.primitiveField(), pg, dbar_.primitiveField(), wc,
+        mag(g_.value())
+    };
+    forAll(f_, k)
+    {
+        segregation_[k].f(state, f_[k].primitiveFieldRef());
+        f_[k].correctBoundaryConditions();
+    }
+    forAll(D_, k)
+    {
+        diffusion_[k].D(state, D_[k].primitiveFieldRef());
+        D_[k].correctBoundaryConditions();
+    }
+
+    for
+    (
+        volScalarField* fld
+      : {&shearRate_, &dbar_, &I_, &etaGranular_, &illPosed_}
+    )
+    {
+        fld->correctBoundaryConditions();
+    }
+
+    calcMixture();
+}
+
+
+void Foam::granularMixture::solve()
+{
+    const Time& runTime = mesh_.time();
+    const label nSub =
+        mesh_.solverDict("alpha").getOrDefault<label>("nAlphaSubCycles", 1);
+    if (nSub < 1)
+    {
+        FatalIOErrorInFunction(mesh_.solverDict("alpha"))
+            << "Invalid value of keyword 'nAlphaSubCycles' in dictionary "
+            << mesh_.solverDict("alpha").name() << ": nAlphaSubCycles = "
+            << nSub << " (>= 1)" << nl << exit(FatalIOError);
+    }
+
+    if (nSub > 1)
+    {
+        surfaceScalarField rhoPhiSum
+        (
+            IOobject("rhoPhiSum", runTime.timeName(), mesh_),
+            mesh_,
+            dimensionedScalar(rhoPhi_.dimensions(), Zero)
+        );
+        const dimensionedScalar totalDeltaT = runTime.deltaT();
+
+        for
+        (
+            subCycle<volScalarField> alphaSubCycle(alphas_[0], nSub);
+            !(++alphaSubCycle).end();
+        )
+        {
+            solveAlphas();
+            rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
+        }
+        rhoPhi_ = rhoPhiSum;
+    }
+    else
+    {
+        solveAlphas();
+    }
+
+    // One line per phase: volume, min, max
+    scalarField sumAlpha(mesh_.nCells(), Zero);
+    for (const volScalarField& alpha : alphas_)
+    {
+        Info<< "    " << alpha.name() << " volume = "
+            << gSum(mesh_.V().field()*alpha.primitiveField())
+            << " min = " << gMin(alpha.primitiveField())
+            << " max = " << gMax(alpha.primitiveField()) << nl;
+        sumAlpha += alpha.primitiveField();
+    }
+    Info<< "    sum of phase fractions: min = " << gMin(sumAlpha)
+        << " max = " << gMax(sumAlpha) << endl;
+
+    calcMixture();
+}
+
+
+bool Foam::granularMixture::read()
+{
+    if (regIOobject::read())
+    {
+        readAir();
+        return true;
+    }
+    return false;
+}
+
+
+// ************************************************************************* //

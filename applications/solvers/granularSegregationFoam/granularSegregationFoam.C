@@ -1,0 +1,144 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+
+Application
+    granularSegregationFoam
+
+Group
+    grpMultiphaseSolvers
+
+Description
+    Solver for the incompressible mixture of air and any number of grain-size
+    phases of Barker, Rauter, Maguire, Johnson & Gray (2021), "Coupling
+    rheology and segregation in granular flows", J. Fluid Mech. 909, A22.
+
+    Derived from multiphaseInterFoam (v1912): the same PIMPLE/PISO
+    pressure-velocity coupling (4.1)-(4.2) (interFoam's UEqn.H and pEqn.H),
+    dynamic meshes and MPI; the phases are transported with MULES by
+    granularMixture, with pairwise segregation (2.13) and Maxwell-Stefan
+    diffusion (2.15) in the place of interface compression, the air
+    segregated out of the grains (4.3)-(4.5), and the mu(I) viscosity of
+    libgranularRheology coupled by Picard iteration (4.7): every outer
+    corrector re-evaluates the rheology from the latest U and p.
+
+    The time step follows the CFL (4.11) with its viscous part, plus the
+    segregation and diffusion rates; each part is logged every step.
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "dynamicFvMesh.H"
+#include "granularMixture.H"
+#include "turbulentTransportModel.H"
+#include "pimpleControl.H"
+#include "fvOptions.H"
+#include "CorrectPhi.H"
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Solver for an incompressible mixture of air and grain-size phases"
+        " with the mu(I)-rheology, size segregation and diffusion"
+        " (Barker et al. 2021).\n"
+        "With optional mesh motion and mesh topology changes."
+    );
+
+    #include "postProcess.H"
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+    #include "createDynamicFvMesh.H"
+    #include "initContinuityErrs.H"
+    #include "createDyMControls.H"
+    #include "createFields.H"
+    #include "initCorrectPhi.H"
+    #include "createUfIfPresent.H"
+
+    turbulence->validate();
+
+    {
+        #include "granularCourantNo.H"
+        #include "setInitialDeltaT.H"
+    }
+
+    const surfaceScalarField& rhoPhi(mixture.rhoPhi());
+
+    // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+    Info<< "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        #include "readDyMControls.H"
+        #include "granularCourantNo.H"
+        #include "alphaCourantNo.H"
+        #include "setDeltaT.H"
+
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (pimple.loop())
+        {
+            if (pimple.firstIter() || moveMeshOuterCorrectors)
+            {
+                mesh.update();
+
+                if (mesh.changing())
+                {
+                    gh = (g & mesh.C()) - ghRef;
+                    ghf = (g & mesh.Cf()) - ghRef;
+
+                    MRF.update();
+
+                    if (correctPhi)
+                    {
+                        // Absolute flux from the mapped surface velocity
+                        phi = mesh.Sf() & Uf();
+
+                        #include "correctPhi.H"
+
+                        // Make the flux relative to the mesh motion
+                        fvc::makeRelative(phi, U);
+                    }
+
+                    if (checkMeshCourantNo)
+                    {
+                        #include "meshCourantNo.H"
+                    }
+                }
+            }
+
+            // Picard: rheology of the previous iterate, then the phases
+            mixture.correctRheology(p);
+            mixture.solve();
+            rho = mixture.rho();
+
+            #include "UEqn.H"
+
+            // --- Pressure corrector loop
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+        }
+
+        runTime.write();
+
+        runTime.printExecutionTime(Info);
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //

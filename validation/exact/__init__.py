@@ -1,0 +1,1 @@
+"""Exact solutions of Barker et al. (2021) used by the validation tests."""
