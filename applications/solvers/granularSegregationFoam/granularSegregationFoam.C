@@ -93,8 +93,8 @@ int main(int argc, char *argv[])
 
                 if (mesh.changing())
                 {
-                    gh = (g & mesh.C()) - ghRef;
-                    ghf = (g & mesh.Cf()) - ghRef;
+                    gh = (mixture.gHydrostatic() & mesh.C()) - ghRef;
+                    ghf = (mixture.gHydrostatic() & mesh.Cf()) - ghRef;
 
                     MRF.update();
 

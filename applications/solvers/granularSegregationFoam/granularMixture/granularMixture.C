@@ -16,6 +16,8 @@
 #include "fvcSurfaceIntegrate.H"
 #include "surfaceInterpolate.H"
 #include "zeroGradientFvPatchFields.H"
+#include "cyclicPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -35,32 +37,31 @@ Foam::granularMixture::sharpeningNames
 
 namespace
 {
-    //- A state field of the mixture, zero gradient on the boundaries
-    Foam::volScalarField* stateField
+    //- IOobject of a state field of the mixture
+    Foam::IOobject stateIO
     (
         const Foam::fvMesh& mesh,
         const Foam::word& name,
-        const Foam::dimensionSet& dims,
         const bool write
     )
     {
         using namespace Foam;
-        return new volScalarField
+        return IOobject
         (
-            IOobject
-            (
-                name,
-                mesh.time().timeName(),
-                mesh,
-                IOobject::NO_READ,
-                write ? IOobject::AUTO_WRITE : IOobject::NO_WRITE
-            ),
+            name,
+            mesh.time().timeName(),
             mesh,
-            dimensionedScalar(dims, Zero),
-            zeroGradientFvPatchScalarField::typeName
+            IOobject::NO_READ,
+            write ? IOobject::AUTO_WRITE : IOobject::NO_WRITE
         );
     }
 }
+
+#define STATE_FIELD(name, dims, write)                                        \
+    stateIO(mesh_, name, write),                                              \
+    mesh_,                                                                    \
+    dimensionedScalar(dims, Zero),                                            \
+    zeroGradientFvPatchScalarField::typeName
 
 
 // * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * * //
@@ -197,6 +198,41 @@ Foam::vector Foam::granularMixture::gHat() const
 {
     const scalar magg = mag(g_.value());
     return magg > SMALL ? g_.value()/magg : vector::zero;
+}
+
+
+Foam::vector Foam::granularMixture::periodicGravity() const
+{
+    // Orthonormal basis of the separation vectors of the cyclic patches
+    List<vector> basis;
+    for (const polyPatch& pp : mesh_.boundaryMesh())
+    {
+        const auto* cpp = isA<cyclicPolyPatch>(pp);
+        vector s(Zero);
+        if (cpp && !isA<processorCyclicPolyPatch>(pp))
+        {
+            if (cpp->size() && cpp->separated())
+            {
+                s = cpp->separation()[0];
+            }
+        }
+        reduce(s, maxMagSqrOp<vector>());
+        for (const vector& b : basis)
+        {
+            s -= (s & b)*b;
+        }
+        if (mag(s) > SMALL)
+        {
+            basis.append(s/mag(s));
+        }
+    }
+
+    vector gc(Zero);
+    for (const vector& b : basis)
+    {
+        gc += (g_.value() & b)*b;
+    }
+    return gc;
 }
 
 
@@ -434,20 +470,21 @@ Foam::granularMixture::granularMixture
         mesh_,
         dimensionedScalar(dimMass/dimTime, Zero)
     ),
-    pGranular_(*stateField(mesh_, "pGranular", dimPressure, true)),
-    shearRate_(*stateField(mesh_, "shearRate", inv(dimTime), true)),
-    dbar_(*stateField(mesh_, "dbar", dimLength, true)),
-    I_(*stateField(mesh_, "I", dimless, true)),
+    pGranular_(STATE_FIELD("pGranular", dimPressure, true)),
+    shearRate_(STATE_FIELD("shearRate", inv(dimTime), true)),
+    dbar_(STATE_FIELD("dbar", dimLength, true)),
+    I_(STATE_FIELD("I", dimless, true)),
     etaGranular_
     (
-        *stateField(mesh_, "etaGranular", dimPressure*dimTime, true)
+        STATE_FIELD("etaGranular", dimPressure*dimTime, true)
     ),
-    illPosed_(*stateField(mesh_, "illPosed", dimless, true)),
-    rho_(*stateField(mesh_, "rho", dimDensity, false)),
-    eta_(*stateField(mesh_, "eta", dimPressure*dimTime, false)),
-    nu_(*stateField(mesh_, "nu", dimViscosity, false)),
+    illPosed_(STATE_FIELD("illPosed", dimless, true)),
+    rho_(STATE_FIELD("granularMixture:rho", dimDensity, false)),
+    eta_(STATE_FIELD("granularMixture:eta", dimPressure*dimTime, false)),
+    nu_(STATE_FIELD("granularMixture:nu", dimViscosity, false)),
     G_(),
-    segregationRate_(mesh_.nCells(), Zero)
+    segregationRate_(mesh_.nCells(), Zero),
+    gPeriodic_(Zero)
 {
     readAir();
 
@@ -493,36 +530,48 @@ Foam::granularMixture::granularMixture
 
     forAll(segregation_, k)
     {
-        f_.append(stateField(mesh_, "f" + Foam::name(k), dimVelocity, false));
+        f_.append
+        (
+            new volScalarField(STATE_FIELD("granularMixture:f" + Foam::name(k), dimVelocity, false))
+        );
     }
     forAll(diffusion_, k)
     {
         D_.append
         (
-            stateField(mesh_, "D" + Foam::name(k), dimArea/dimTime, false)
+            new volScalarField(STATE_FIELD("granularMixture:D" + Foam::name(k), dimArea/dimTime, false))
         );
     }
 
     calcG();
+
+    gPeriodic_ = periodicGravity();
+    if (mag(gPeriodic_) > 0)
+    {
+        Info<< "Gravity along the cyclic directions " << gPeriodic_
+            << " acts as a body force; gh uses " << gHydrostatic().value()
+            << nl << endl;
+    }
 }
 
 
+#undef STATE_FIELD
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::dimensionedVector Foam::granularMixture::gHydrostatic() const
+{
+    return dimensionedVector("g", g_.dimensions(), g_.value() - gPeriodic_);
+}
+
 
 Foam::tmp<Foam::surfaceScalarField>
 Foam::granularMixture::surfaceTensionForce() const
 {
-    return tmp<surfaceScalarField>::New
-    (
-        IOobject
-        (
-            "surfaceTensionForce",
-            mesh_.time().timeName(),
-            mesh_
-        ),
-        mesh_,
-        dimensionedScalar(dimForce/dimVolume, Zero)
-    );
+    return
+        fvc::interpolate(rho_)
+       *(dimensionedVector("gc", g_.dimensions(), gPeriodic_) & mesh_.Sf())
+       /mesh_.magSf();
 }
 
 
@@ -602,7 +651,7 @@ void Foam::granularMixture::correctRheology(const volScalarField& p)
 
     // Pressure relative to the air (see the class description)
     {
-        const volScalarField pAir(p - rhoAir_*(g_ & mesh_.C()));
+        const volScalarField pAir(p - rhoAir_*(gHydrostatic() & mesh_.C()));
         const scalarField pureAir(pos0(alphas_[0].primitiveField() - 0.99));
         const scalarField V(mesh_.V().field()*pureAir);
         const scalar volAir = gSum(V);

@@ -1,0 +1,103 @@
+"""Running the verification cases and reading what OpenFOAM sampled.
+
+A case runs in validation/results/<name>/ (wiped first, git-ignored), so
+its logs, fields, errors file and figure stay for the reader.  Every step
+that fails (a tool's exit status, a missing output) is an assertion
+failure, never a skip.
+"""
+import json
+import re
+import shutil
+import time
+from pathlib import Path
+
+from conftest import PROJECT, run
+from exact import errors
+
+RESULTS = PROJECT / "validation" / "results"
+
+
+def fresh_case(name, dest=None):
+    """Copy validation/cases/<name> to validation/results/<dest or name>."""
+    src = PROJECT / "validation" / "cases" / name
+    assert src.is_dir(), f"no verification case {name}"
+    dst = RESULTS / (dest or name)
+    if dst.exists():
+        shutil.rmtree(dst)
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copytree(src, dst)
+    return dst
+
+
+def foam(case, *cmd, timeout=3600):
+    """Run a command in case, assert exit status 0, return its seconds."""
+    start = time.monotonic()
+    res = run(list(cmd), case, timeout=timeout)
+    seconds = time.monotonic() - start
+    assert res.returncode == 0, (
+        f"{' '.join(cmd)} failed in {case} (exit {res.returncode}):\n"
+        + (res.stdout + res.stderr)[-3000:])
+    return seconds
+
+
+def set_entry(case, dictionary, entry, value):
+    """foamDictionary -entry entry -set value on case/dictionary."""
+    foam(case, "foamDictionary", "-entry", entry, "-set", str(value),
+         dictionary)
+
+
+def run_case(case, script="./Allrun"):
+    """Run the case's Allrun (or another script); seconds it took."""
+    return foam(case, script)
+
+
+def times(case, function="profile"):
+    """Sorted sampling times (floats, as directory names) of a sets object."""
+    base = case / "postProcessing" / function
+    assert base.is_dir(), f"no sampled profiles in {base}"
+    return sorted((d.name for d in base.iterdir() if d.is_dir()), key=float)
+
+
+def profiles(case, time_name, function="profile", set_name="centreline"):
+    """Sampled fields at a time: {'z': ..., field: column, 'U': (n, 3)}."""
+    folder = case / "postProcessing" / function / time_name
+    files = sorted(folder.glob(f"{set_name}_*.xy"))
+    assert files, f"no sampled sets in {folder}"
+    out = {}
+    for path in files:
+        fields = path.stem[len(set_name) + 1:].split("_")
+        data = errors.read_raw(path)
+        out["z"] = data[:, 0]
+        if fields == ["U"]:
+            out["U"] = data[:, 1:4]
+        else:
+            assert data.shape[1] == len(fields) + 1, (
+                f"{path}: {data.shape[1]} columns for fields {fields}")
+            for k, name in enumerate(fields):
+                out[name] = data[:, k + 1]
+    return out
+
+
+def volumes(case, function="volumes"):
+    """volIntegrate of the phase fractions: (times, {field: values})."""
+    files = sorted((case / "postProcessing" / function).glob(
+        "*/volFieldValue.dat"), key=lambda p: float(p.parent.name))
+    assert files, f"no volume integrals in {case / 'postProcessing'}"
+    header, rows = None, []
+    for path in files:
+        for line in path.read_text().splitlines():
+            if line.startswith("# Time"):
+                header = line[1:].split()
+            elif line and not line.startswith("#"):
+                rows.append([float(x) for x in line.split()])
+    assert header and rows, f"empty volume integrals in {files}"
+    cols = list(zip(*rows))
+    names = [re.sub(r"^volIntegrate\((.*)\)$", r"\1", h) for h in header]
+    return cols[0], {n: cols[k] for k, n in enumerate(names) if k > 0}
+
+
+def write_results(case, name, numbers):
+    """Write numbers (a dict) to case/<name>.json; return its path."""
+    path = case / f"{name}.json"
+    path.write_text(json.dumps(numbers, indent=2, sort_keys=True) + "\n")
+    return path
