@@ -315,6 +315,34 @@ void Foam::granularMixture::relativeFluxes
 }
 
 
+bool Foam::granularMixture::outOfBounds
+(
+    const PtrList<surfaceScalarField>& corrections,
+    const PtrList<surfaceScalarField>& upwindPhis,
+    const scalar tol
+) const
+{
+    // The update of MULES::explicitSolve, without changing the fields
+    const scalar deltaT = mesh_.time().deltaTValue();
+    bool out = false;
+    forAll(alphas_, i)
+    {
+        scalarField psi(alphas_[i].oldTime().primitiveField());
+        if (mesh_.moving())
+        {
+            psi *= mesh_.Vsc0()().field()/mesh_.Vsc()().field();
+        }
+        psi -= deltaT*fvc::surfaceIntegrate
+        (
+            corrections[i] + upwindPhis[i]
+        )().primitiveField();
+
+        out = out || min(psi) < -tol || max(psi) > 1 + tol;
+    }
+    return returnReduce(out, orOp<bool>());
+}
+
+
 void Foam::granularMixture::solveAlphas()
 {
     const word alphaScheme("div(phi,alpha)");
@@ -377,24 +405,52 @@ void Foam::granularMixture::solveAlphas()
         alphaPhis[j] -= Fd;
     }
 
-    // Bound each phase, then make the corrections sum to zero
+    // Bound each phase, then make the corrections sum to zero.  limitSum
+    // scales corrections of one sign only, which can undo a phase's bound
+    // where several phases meet (seen on moving meshes): while the update
+    // would leave [0, 1] by more than 1e-12, the pair is repeated, each
+    // pass shrinking the corrections towards the bounded upwind fluxes.
+    // One pass, multiphaseInterFoam's, is the rule.
+    const label nPasses =
+        mesh_.solverDict("alpha").getOrDefault<label>("nLimitSumPasses", 10);
+    PtrList<surfaceScalarField> upwindPhis(nPhases);
     forAll(alphas_, i)
     {
-        MULES::limit
+        upwindPhis.set
         (
-            1.0/mesh_.time().deltaTValue(),
-            geometricOneField(),
-            alphas_[i],
-            phi_,
-            alphaPhis[i],
-            zeroField(),
-            zeroField(),
-            oneField(),
-            zeroField(),
-            true
+            i,
+            new surfaceScalarField(upwind<scalar>(mesh_, phi_).flux(alphas_[i]))
         );
     }
-    MULES::limitSum(alphaPhis);
+    for (label pass = 0; pass < max(nPasses, label(1)); ++pass)
+    {
+        forAll(alphas_, i)
+        {
+            if (pass > 0)
+            {
+                alphaPhis[i] += upwindPhis[i];
+            }
+            MULES::limit
+            (
+                1.0/mesh_.time().deltaTValue(),
+                geometricOneField(),
+                alphas_[i],
+                phi_,
+                alphaPhis[i],
+                zeroField(),
+                zeroField(),
+                oneField(),
+                zeroField(),
+                true
+            );
+        }
+        MULES::limitSum(alphaPhis);
+
+        if (!outOfBounds(alphaPhis, upwindPhis, 1e-12))
+        {
+            break;
+        }
+    }
 
     rhoPhi_ = dimensionedScalar(rhoPhi_.dimensions(), Zero);
     const dimensionedScalar rhoGrains(rheology_.rhoGrains());
@@ -404,7 +460,7 @@ void Foam::granularMixture::solveAlphas()
     {
         volScalarField& alpha = alphas_[i];
         surfaceScalarField& alphaPhi = alphaPhis[i];
-        alphaPhi += upwind<scalar>(mesh_, phi_).flux(alpha);
+        alphaPhi += upwindPhis[i];
 
         MULES::explicitSolve(geometricOneField(), alpha, alphaPhi);
 
