@@ -9,7 +9,7 @@ import json
 import re
 import shutil
 import time
-from pathlib import Path
+
 
 from conftest import PROJECT, run
 from exact import errors

@@ -37,6 +37,22 @@ def last_two(case):
     return t[-2], t[-1]
 
 
+def plot_gray_chugunov(case, name, zhat, phi, Pe, t_end, l2):
+    """phi^s against (5.8) on z/h, saved as case/<name>.png."""
+    fig, ax = plt.subplots(figsize=(4, 4))
+    zh = np.linspace(0, 1, 400)
+    ax.plot(grayChugunov.phi_s(zh, Pe, 0.5), zh, "k-",
+            label=f"Gray & Chugunov, Pe = {Pe:.2f}")
+    ax.plot(phi, zhat, "o", ms=3, mfc="none", label=f"solver, t = {t_end} s")
+    ax.set_xlabel(r"$\varphi^s$")
+    ax.set_ylabel(r"$z/h$")
+    ax.set_title(f"{name}: L2 = {100 * l2:.3f} %")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(case / f"{name}.png", dpi=120)
+    plt.close(fig)
+
+
 # ---------------------------------------------------------------------------
 # 1. Static column
 # ---------------------------------------------------------------------------
@@ -68,18 +84,7 @@ def test_static_column(foam_env):
         "cells_over_depth": len(z), "end_time": float(t_end),
         "solver_seconds": seconds})
 
-    fig, ax = plt.subplots(figsize=(4, 4))
-    zh = np.linspace(0, 1, 400)
-    ax.plot(grayChugunov.phi_s(zh, Pe, 0.5), zh, "k-",
-            label=f"Gray & Chugunov, Pe = {Pe:.1f}")
-    ax.plot(phi, z / H, "o", ms=3, mfc="none", label=f"solver, t = {t_end} s")
-    ax.set_xlabel(r"$\varphi^s$")
-    ax.set_ylabel(r"$z/h$")
-    ax.set_title(f"static column: L2 = {100 * l2:.3f} %")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(case / "staticColumn.png", dpi=120)
-    plt.close(fig)
+    plot_gray_chugunov(case, "staticColumn", z / H, phi, Pe, t_end, l2)
 
     assert change < 1e-6, f"not steady: phi^s changed by {change}"
     assert l2 < 0.01, f"L2 error {l2:.4%} >= 1 %"
@@ -191,19 +196,8 @@ def test_layer_gray_chugunov(layer):
         "max_change_last_interval": change,
         "end_time": float(t_end), "solver_seconds": seconds})
 
-    fig, ax = plt.subplots(figsize=(4, 4))
-    zh = np.linspace(0, 1, 400)
-    ax.plot(grayChugunov.phi_s(zh, Pe, 0.5), zh, "k-",
-            label=f"Gray & Chugunov, Pe = {Pe:.2f}")
-    ax.plot(phi, z[grains] / H, "o", ms=3, mfc="none",
-            label=f"solver, t = {t_end} s")
-    ax.set_xlabel(r"$\varphi^s$")
-    ax.set_ylabel(r"$z/h$")
-    ax.set_title(f"inclined layer: L2 = {100 * l2:.3f} %")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(case / "inclinedLayer-grayChugunov.png", dpi=120)
-    plt.close(fig)
+    plot_gray_chugunov(case, "inclinedLayer-grayChugunov", z[grains] / H,
+                       phi, Pe, t_end, l2)
 
     assert abs(Pe - 31.97) < 0.005, f"Pe = {Pe}"
     assert abs(phibar - 0.5) < 1e-9, f"depth average {phibar} not conserved"
