@@ -167,6 +167,11 @@ def test_layer_bagnold(layer):
     fig.savefig(case / "inclinedLayer-bagnold.png", dpi=120)
     plt.close(fig)
 
+    written = ("alpha.air", "alpha.small", "alpha.large", "U", "p", "p_rgh",
+               "I", "etaGranular", "shearRate", "dbar", "illPosed",
+               "pGranular")
+    missing = [f for f in written if not (case / t_end / f).is_file()]
+    assert not missing, f"fields not written at t = {t_end}: {missing}"
     assert change_u < 1e-3, f"not steady: u changed by {change_u:.2e} of max"
     assert l2_u < 0.01, f"velocity L2 error {l2_u:.4%} >= 1 %"
     assert l2_p < 0.01, f"pressure L2 error {l2_p:.4%} >= 1 %"
