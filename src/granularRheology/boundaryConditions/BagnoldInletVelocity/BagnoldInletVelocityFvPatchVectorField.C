@@ -1,0 +1,266 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+#include "BagnoldInletVelocityFvPatchVectorField.H"
+#include "addToRunTimeSelectionTable.H"
+#include "gravityMeshObject.H"
+#include "granularInput.H"
+#include "IOdictionary.H"
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::BagnoldInletVelocityFvPatchVectorField::
+BagnoldInletVelocityFvPatchVectorField
+(
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF
+)
+:
+    fixedValueFvPatchVectorField(p, iF),
+    h_(0),
+    phase_(),
+    plane_(),
+    depthAveragedFrame_(false),
+    frameVelocity_(Zero)
+{}
+
+
+Foam::BagnoldInletVelocityFvPatchVectorField::
+BagnoldInletVelocityFvPatchVectorField
+(
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF,
+    const dictionary& dict
+)
+:
+    fixedValueFvPatchVectorField(p, iF, dict, false),
+    h_(granularInput::readPositive(dict, "h", dimLength).value()),
+    phase_(dict.getOrDefault<word>("phase", word::null)),
+    plane_(dict),
+    depthAveragedFrame_(false),
+    frameVelocity_(Zero)
+{
+    if (dict.found("frameVelocity"))
+    {
+        ITstream& is = dict.lookup("frameVelocity");
+        token t(is);
+        if (t.isWord())
+        {
+            if (t.wordToken() != "depthAveraged")
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Invalid value of keyword 'frameVelocity' in "
+                    << "dictionary " << dict.name() << ": frameVelocity = "
+                    << t.wordToken() << " (a vector or depthAveraged)" << nl
+                    << exit(FatalIOError);
+            }
+            depthAveragedFrame_ = true;
+        }
+        else
+        {
+            is.putBack(t);
+            is >> frameVelocity_;
+        }
+    }
+
+    // The rheology and air of constant/granularProperties, read here without
+    // registering: the solver's mixture owns the registered copy
+    const IOdictionary props
+    (
+        IOobject
+        (
+            "granularProperties",
+            db().time().constant(),
+            db(),
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    if (!props.isDict("air"))
+    {
+        FatalIOErrorInFunction(props)
+            << "Missing sub-dictionary 'air' in " << props.name()
+            << " (its rho and eta set the air inflow profile (5.7))" << nl
+            << exit(FatalIOError);
+    }
+    const dictionary& air = props.subDict("air");
+    const granularRheology rheology(props);
+
+    flow_.reset
+    (
+        new BagnoldFlow
+        (
+            rheology,
+            phase_.empty() ? rheology.names()[0] : phase_,
+            meshObjects::gravity::New(db().time()).value(),
+            plane_.normal(),
+            h_,
+            plane_.top(p),
+            granularInput::readPositive(air, "rho", dimDensity).value(),
+            granularInput::readPositive(air, "eta", dimPressure*dimTime)
+               .value(),
+            dict
+        )
+    );
+
+    fvPatchVectorField::operator==(profile());
+}
+
+
+Foam::BagnoldInletVelocityFvPatchVectorField::
+BagnoldInletVelocityFvPatchVectorField
+(
+    const BagnoldInletVelocityFvPatchVectorField& ptf,
+    const fvPatch& p,
+    const DimensionedField<vector, volMesh>& iF,
+    const fvPatchFieldMapper& mapper
+)
+:
+    fixedValueFvPatchVectorField(ptf, p, iF, mapper),
+    h_(ptf.h_),
+    phase_(ptf.phase_),
+    plane_(ptf.plane_),
+    depthAveragedFrame_(ptf.depthAveragedFrame_),
+    frameVelocity_(ptf.frameVelocity_),
+    flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
+{}
+
+
+Foam::BagnoldInletVelocityFvPatchVectorField::
+BagnoldInletVelocityFvPatchVectorField
+(
+    const BagnoldInletVelocityFvPatchVectorField& ptf
+)
+:
+    fixedValueFvPatchVectorField(ptf),
+    h_(ptf.h_),
+    phase_(ptf.phase_),
+    plane_(ptf.plane_),
+    depthAveragedFrame_(ptf.depthAveragedFrame_),
+    frameVelocity_(ptf.frameVelocity_),
+    flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
+{}
+
+
+Foam::BagnoldInletVelocityFvPatchVectorField::
+BagnoldInletVelocityFvPatchVectorField
+(
+    const BagnoldInletVelocityFvPatchVectorField& ptf,
+    const DimensionedField<vector, volMesh>& iF
+)
+:
+    fixedValueFvPatchVectorField(ptf, iF),
+    h_(ptf.h_),
+    phase_(ptf.phase_),
+    plane_(ptf.plane_),
+    depthAveragedFrame_(ptf.depthAveragedFrame_),
+    frameVelocity_(ptf.frameVelocity_),
+    flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
+{}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+const Foam::BagnoldFlow&
+Foam::BagnoldInletVelocityFvPatchVectorField::flow() const
+{
+    if (!flow_.valid())
+    {
+        FatalErrorInFunction
+            << "Patch " << patch().name() << " of " << internalField().name()
+            << " was not constructed from a dictionary: no inflow profile"
+            << exit(FatalError);
+    }
+    return *flow_;
+}
+
+
+Foam::vector
+Foam::BagnoldInletVelocityFvPatchVectorField::frameVelocity() const
+{
+    return
+        depthAveragedFrame_
+      ? flow().ubar()*flow().downslope()
+      : frameVelocity_;
+}
+
+
+void Foam::BagnoldInletVelocityFvPatchVectorField::setFrameVelocity
+(
+    const vector& U
+)
+{
+    depthAveragedFrame_ = false;
+    frameVelocity_ = U;
+    fvPatchVectorField::operator==(profile());
+}
+
+
+Foam::tmp<Foam::vectorField>
+Foam::BagnoldInletVelocityFvPatchVectorField::profile() const
+{
+    const BagnoldFlow& f = flow();
+    const scalarField z(plane_.faceHeight(patch()));
+    const vector Uframe(frameVelocity());
+
+    tmp<vectorField> tU(new vectorField(z.size()));
+    vectorField& U = tU.ref();
+    forAll(z, facei)
+    {
+        U[facei] = f.u(z[facei])*f.downslope() - Uframe;
+    }
+    return tU;
+}
+
+
+void Foam::BagnoldInletVelocityFvPatchVectorField::updateCoeffs()
+{
+    if (updated())
+    {
+        return;
+    }
+
+    fvPatchVectorField::operator==(profile());
+
+    fixedValueFvPatchVectorField::updateCoeffs();
+}
+
+
+void Foam::BagnoldInletVelocityFvPatchVectorField::write(Ostream& os) const
+{
+    fvPatchVectorField::write(os);
+    os.writeEntry("h", h_);
+    if (!phase_.empty())
+    {
+        os.writeEntry("phase", phase_);
+    }
+    plane_.write(os);
+    if (depthAveragedFrame_)
+    {
+        os.writeEntry("frameVelocity", word("depthAveraged"));
+    }
+    else if (mag(frameVelocity_) > 0)
+    {
+        os.writeEntry("frameVelocity", frameVelocity_);
+    }
+    writeEntry("value", os);
+}
+
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    makePatchTypeField
+    (
+        fvPatchVectorField,
+        BagnoldInletVelocityFvPatchVectorField
+    );
+}
+
+
+// ************************************************************************* //
