@@ -17,10 +17,11 @@ from exact import errors
 RESULTS = PROJECT / "validation" / "results"
 
 
-def fresh_case(name, dest=None):
-    """Copy validation/cases/<name> to validation/results/<dest or name>."""
-    src = PROJECT / "validation" / "cases" / name
-    assert src.is_dir(), f"no verification case {name}"
+def fresh_case(name, dest=None, tutorial=False):
+    """Copy validation/cases/<name> (tutorials/<name> if tutorial) to
+    validation/results/<dest or name>."""
+    src = PROJECT / ("tutorials" if tutorial else "validation/cases") / name
+    assert src.is_dir(), f"no case {src}"
     dst = RESULTS / (dest or name)
     if dst.exists():
         shutil.rmtree(dst)

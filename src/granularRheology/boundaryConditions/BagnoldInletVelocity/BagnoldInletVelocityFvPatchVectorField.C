@@ -23,6 +23,7 @@ BagnoldInletVelocityFvPatchVectorField
     h_(0),
     phase_(),
     plane_(),
+    Lz_(0),
     depthAveragedFrame_(false),
     frameVelocity_(Zero)
 {}
@@ -40,6 +41,7 @@ BagnoldInletVelocityFvPatchVectorField
     h_(granularInput::readPositive(dict, "h", dimLength).value()),
     phase_(dict.getOrDefault<word>("phase", word::null)),
     plane_(dict),
+    Lz_(0),
     depthAveragedFrame_(false),
     frameVelocity_(Zero)
 {
@@ -88,6 +90,17 @@ BagnoldInletVelocityFvPatchVectorField
             << exit(FatalIOError);
     }
     const dictionary& air = props.subDict("air");
+
+    // L_z: the top of the patch, found once over all processors and written
+    // back, so that tools that read one processor at a time (reconstructPar)
+    // see the same profile; a patch without faces anywhere has no air
+    if (!dict.readIfPresent("Lz", Lz_))
+    {
+        Lz_ =
+            returnReduce(p.size(), sumOp<label>())
+          ? plane_.top(p)
+          : h_;
+    }
     const granularRheology rheology(props);
 
     flow_.reset
@@ -99,7 +112,7 @@ BagnoldInletVelocityFvPatchVectorField
             meshObjects::gravity::New(db().time()).value(),
             plane_.normal(),
             h_,
-            plane_.top(p),
+            Lz_,
             granularInput::readPositive(air, "rho", dimDensity).value(),
             granularInput::readPositive(air, "eta", dimPressure*dimTime)
                .value(),
@@ -124,6 +137,7 @@ BagnoldInletVelocityFvPatchVectorField
     h_(ptf.h_),
     phase_(ptf.phase_),
     plane_(ptf.plane_),
+    Lz_(ptf.Lz_),
     depthAveragedFrame_(ptf.depthAveragedFrame_),
     frameVelocity_(ptf.frameVelocity_),
     flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
@@ -140,6 +154,7 @@ BagnoldInletVelocityFvPatchVectorField
     h_(ptf.h_),
     phase_(ptf.phase_),
     plane_(ptf.plane_),
+    Lz_(ptf.Lz_),
     depthAveragedFrame_(ptf.depthAveragedFrame_),
     frameVelocity_(ptf.frameVelocity_),
     flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
@@ -157,6 +172,7 @@ BagnoldInletVelocityFvPatchVectorField
     h_(ptf.h_),
     phase_(ptf.phase_),
     plane_(ptf.plane_),
+    Lz_(ptf.Lz_),
     depthAveragedFrame_(ptf.depthAveragedFrame_),
     frameVelocity_(ptf.frameVelocity_),
     flow_(ptf.flow_.valid() ? new BagnoldFlow(*ptf.flow_) : nullptr)
@@ -239,6 +255,7 @@ void Foam::BagnoldInletVelocityFvPatchVectorField::write(Ostream& os) const
         os.writeEntry("phase", phase_);
     }
     plane_.write(os);
+    os.writeEntry("Lz", Lz_);
     if (depthAveragedFrame_)
     {
         os.writeEntry("frameVelocity", word("depthAveraged"));

@@ -6,6 +6,7 @@
 
 #include "layeredInletFractionFvPatchScalarField.H"
 #include "addToRunTimeSelectionTable.H"
+#include "surfaceFields.H"
 #include "granularInput.H"
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
@@ -42,7 +43,7 @@ layeredInletFractionFvPatchScalarField
     const DimensionedField<scalar, volMesh>& iF
 )
 :
-    fixedValueFvPatchScalarField(p, iF),
+    inletOutletFvPatchScalarField(p, iF),
     h_(0),
     below_(0),
     above_(0),
@@ -58,13 +59,22 @@ layeredInletFractionFvPatchScalarField
     const dictionary& dict
 )
 :
-    fixedValueFvPatchScalarField(p, iF, dict, false),
+    inletOutletFvPatchScalarField(p, iF),
     h_(granularInput::readPositive(dict, "h", dimLength).value()),
     below_(readFraction(dict, "below")),
     above_(readFraction(dict, "above")),
     plane_(dict)
 {
-    fvPatchScalarField::operator==(profile());
+    phiName_ = dict.getOrDefault<word>("phi", "phi");
+    refValue() = profile();
+    refGrad() = Zero;
+    valueFraction() = 1;
+    fvPatchScalarField::operator=
+    (
+        dict.found("value")
+      ? scalarField("value", dict, p.size())
+      : refValue()
+    );
 }
 
 
@@ -77,7 +87,7 @@ layeredInletFractionFvPatchScalarField
     const fvPatchFieldMapper& mapper
 )
 :
-    fixedValueFvPatchScalarField(ptf, p, iF, mapper),
+    inletOutletFvPatchScalarField(ptf, p, iF, mapper),
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
@@ -91,7 +101,7 @@ layeredInletFractionFvPatchScalarField
     const layeredInletFractionFvPatchScalarField& ptf
 )
 :
-    fixedValueFvPatchScalarField(ptf),
+    inletOutletFvPatchScalarField(ptf),
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
@@ -106,7 +116,7 @@ layeredInletFractionFvPatchScalarField
     const DimensionedField<scalar, volMesh>& iF
 )
 :
-    fixedValueFvPatchScalarField(ptf, iF),
+    inletOutletFvPatchScalarField(ptf, iF),
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
@@ -123,15 +133,16 @@ void Foam::layeredInletFractionFvPatchScalarField::updateCoeffs()
         return;
     }
 
-    fvPatchScalarField::operator==(profile());
+    refValue() = profile();
 
-    fixedValueFvPatchScalarField::updateCoeffs();
+    inletOutletFvPatchScalarField::updateCoeffs();
 }
 
 
 void Foam::layeredInletFractionFvPatchScalarField::write(Ostream& os) const
 {
     fvPatchScalarField::write(os);
+    os.writeEntryIfDifferent<word>("phi", "phi", phiName_);
     os.writeEntry("h", h_);
     os.writeEntry("below", below_);
     os.writeEntry("above", above_);

@@ -1,0 +1,118 @@
+"""Smoke tier of the chute tutorial: a few steps serial and on 2 ranks, the
+inflow conditions against (5.2), (5.4) and (5.7), and granularMovingFrame.
+"""
+import math
+import re
+
+import numpy as np
+import pytest
+
+from cases import foam, fresh_case
+from chute import post
+from exact import bagnold, chute as exact_chute
+
+pytestmark = pytest.mark.smoke
+
+ZETA = math.radians(24.0)
+STEPS_END = "2e-3"
+
+
+def patch_value(case, time_name, field, patch):
+    """The `value` of a patch of a written field, by foamDictionary:
+    array (n,) or (n, 3)."""
+    res = foam_output(case, "foamDictionary", "-precision", "17", "-entry",
+                      f"boundaryField.{patch}.value", "-value",
+                      f"{time_name}/{field}")
+    m = re.search(r"List<(\w+)>\s*(\d+)\s*\((.*)\)", res, re.S)
+    assert m, f"{case}/{time_name}/{field}: no nonuniform {patch} value"
+    n = int(m.group(2))
+    values = np.array(m.group(3).replace("(", " ").replace(")", " ").split(),
+                      dtype=float)
+    return values if m.group(1) == "scalar" else values.reshape(n, 3)
+
+
+def foam_output(case, *cmd):
+    from conftest import run
+    res = run(list(cmd), case)
+    assert res.returncode == 0, f"{' '.join(cmd)} failed:\n{res.stderr}"
+    return res.stdout
+
+
+@pytest.fixture(scope="module")
+def short(foam_env):
+    case = fresh_case("chute", dest="chute_smoke/serial", tutorial=True)
+    foam(case, "./Allrun", "-endTime", STEPS_END,
+         "-writeInterval", STEPS_END)
+    return case
+
+
+def inlet_heights(case):
+    par = post.parameters(case)
+    Lz, nz, h = float(par["Lz"]), int(par["nz"]), float(par["h"])
+    dz = Lz / nz
+    return (np.arange(nz) + 0.5) * dz, dz, Lz, h
+
+
+def test_inflow_profiles(short):
+    """BagnoldInletVelocity equals (5.4) below h and (5.7) above;
+    layeredInletFraction gives (5.2) with the cut face shared."""
+    case = short
+    t = post.time_names(case)[-1]
+    z, dz, Lz, h = inlet_heights(case)
+    U = patch_value(case, t, "U", "inlet")
+    exact = np.where(z <= h,
+                     bagnold.velocity(np.minimum(z, h), h, ZETA),
+                     bagnold.air_velocity(np.clip(z, h, Lz), h, Lz, ZETA))
+    assert np.allclose(U[:, 0], exact, rtol=1e-9, atol=0), (
+        np.c_[z, U[:, 0], exact])
+    assert np.all(U[:, 1:] == 0)
+
+    below = np.clip((h - (z - 0.5 * dz)) / dz, 0.0, 1.0)
+    for name, inside, outside in (("alpha.small", 0.5, 0.0),
+                                  ("alpha.large", 0.5, 0.0),
+                                  ("alpha.air", 0.0, 1.0)):
+        a = patch_value(case, t, name, "inlet")
+        assert np.allclose(a, below * inside + (1 - below) * outside,
+                           rtol=0, atol=1e-9), (name, a)  # writePrecision 10
+    # The grain volume flux through the inlet is the integral of (5.4)
+    flux = np.sum((patch_value(case, t, "alpha.small", "inlet")
+                   + patch_value(case, t, "alpha.large", "inlet"))
+                  * U[:, 0]) * dz
+    qexact = h * exact_chute.depth_averaged_velocity(h, ZETA)
+    assert abs(flux / qexact - 1) < 0.01, (flux, qexact)
+
+
+def test_parallel_matches_serial(short):
+    case = fresh_case("chute", dest="chute_smoke/parallel", tutorial=True)
+    foam(case, "./Allrun", "-endTime", STEPS_END,
+         "-writeInterval", STEPS_END, "-parallel")
+    t = post.time_names(short)[-1]
+    assert post.time_names(case)[-1] == t
+    for name in ("U", "alpha.small", "alpha.air", "p_rgh"):
+        a, b = post.read_field(short, t, name), post.read_field(case, t, name)
+        scale = max(float(np.abs(a).max()), 1e-30)
+        diff = float(np.abs(a - b).max()) / scale
+        assert diff < 1e-6, f"{name}: serial and 2 ranks differ by {diff}"
+
+
+def test_moving_frame(short):
+    """granularMovingFrame: U and the base shifted by -ubar e_x (5.16), the
+    inflow's frame set, and the solver continues from there."""
+    case = fresh_case("chute", dest="chute_smoke/frame", tutorial=True)
+    foam(case, "./Allrun", "-endTime", STEPS_END,
+         "-writeInterval", STEPS_END)
+    t = post.time_names(case)[-1]
+    before = post.read_field(case, t, "U")
+    foam(case, "./Allrun-movingFrame", "-start", t, "-endTime", "4e-3")
+    frame = case / "movingFrame"
+    after = post.read_field(frame, t, "U")
+    ubar = exact_chute.depth_averaged_velocity(5e-3, ZETA)
+    assert np.allclose(after[:, 0], before[:, 0] - ubar, rtol=0, atol=1e-9)
+    assert np.allclose(after[:, 1:], before[:, 1:], rtol=0, atol=1e-12)
+    assert math.isclose(post.frame_velocity(frame, t), ubar, rel_tol=1e-9)
+    base = foam_output(frame, "foamDictionary", "-entry",
+                       "boundaryField.base", f"{t}/U")
+    assert re.search(r"type\s+fixedValue;", base), base
+    assert re.search(rf"value\s+uniform\s+\(\s*{-ubar:.6g}\d*\s+0\s+0\s*\)",
+                     base), base
+    assert (frame / "0.004" / "U").is_file(), "the moving frame did not run"
