@@ -117,7 +117,7 @@ int main(int argc, char *argv[])
             }
 
             // Picard: rheology of the previous iterate, then the phases
-            mixture.correctRheology(p);
+            mixture.correctRheology(p, p_rgh.needReference());
             mixture.solve();
             rho = mixture.rho();
 

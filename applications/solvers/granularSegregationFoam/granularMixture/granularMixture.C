@@ -701,11 +701,22 @@ Foam::granularMixture::cfl(const scalar deltaT) const
 }
 
 
-void Foam::granularMixture::correctRheology(const volScalarField& p)
+void Foam::granularMixture::correctRheology
+(
+    const volScalarField& p,
+    const bool closed
+)
 {
     const label nCells = mesh_.nCells();
 
     // Pressure relative to the air (see the class description)
+    if (!closed)
+    {
+        pGranular_.primitiveFieldRef() =
+            max(p.primitiveField(), rheology_.pMin().value());
+        pGranular_.correctBoundaryConditions();
+    }
+    else
     {
         const volScalarField pAir(p - rhoAir_*(gHydrostatic() & mesh_.C()));
         const scalarField pureAir(pos0(alphas_[0].primitiveField() - 0.99));
