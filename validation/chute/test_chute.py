@@ -56,7 +56,7 @@ def record(numbers):
 
 
 # ---------------------------------------------------------------------------
-# The coarse chute: lab frame to the steady state, and from t = 4 s in the
+# The coarse chute: lab frame to the steady state, and from t = 8 s in the
 # moving frame (run on the second core while the lab frame goes on)
 # ---------------------------------------------------------------------------
 
