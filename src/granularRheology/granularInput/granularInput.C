@@ -126,6 +126,34 @@ Foam::dimensionedScalar Foam::granularInput::readNonNegativeOrDefault
 }
 
 
+Foam::word Foam::granularInput::readVectorOrWord
+(
+    const dictionary& dict,
+    const word& keyword,
+    const wordList& words,
+    vector& v
+)
+{
+    ITstream& is = dict.lookup(keyword);
+    token t(is);
+    if (!t.isWord())
+    {
+        is.putBack(t);
+        is >> v;
+        return word::null;
+    }
+    if (!words.found(t.wordToken()))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword '" << keyword << "' in dictionary "
+            << dict.name() << ": " << keyword << " = " << t.wordToken()
+            << " (a vector or one of " << flatOutput(words) << ")" << nl
+            << exit(FatalIOError);
+    }
+    return t.wordToken();
+}
+
+
 const Foam::dictionary& Foam::granularInput::coeffsDict
 (
     const dictionary& dict,

@@ -91,47 +91,39 @@ void Foam::granularMixture::readAir()
     {
         fAir_ = granularInput::readNonNegative(dict, "f", dimVelocity);
 
-        ITstream& is = dict.lookup("direction");
-        token t(is);
-        if (t.isWord())
+        vector e(Zero);
+        const word d
+        (
+            granularInput::readVectorOrWord
+            (
+                dict, "direction", {"gravity", "antiGravity"}, e
+            )
+        );
+        if (d == "gravity")
         {
-            if (t.wordToken() == "gravity")
-            {
-                eAir_ = gHat();
-            }
-            else if (t.wordToken() == "antiGravity")
-            {
-                eAir_ = -gHat();
-            }
-            else
-            {
-                FatalIOErrorInFunction(dict)
-                    << "Invalid value of keyword 'direction' in dictionary "
-                    << dict.name() << ": direction = " << t.wordToken()
-                    << " (a vector, gravity or antiGravity)" << nl
-                    << exit(FatalIOError);
-            }
+            eAir_ = gHat();
+        }
+        else if (d == "antiGravity")
+        {
+            eAir_ = -gHat();
+        }
+        else if (mag(e) < SMALL)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Invalid value of keyword 'direction' in dictionary "
+                << dict.name() << ": direction = " << e
+                << " (a vector of nonzero length)" << nl
+                << exit(FatalIOError);
         }
         else
         {
-            is.putBack(t);
-            vector e;
-            is >> e;
-            if (mag(e) < SMALL)
-            {
-                FatalIOErrorInFunction(dict)
-                    << "Invalid value of keyword 'direction' in dictionary "
-                    << dict.name() << ": direction = " << e
-                    << " (a vector of nonzero length)" << nl
-                    << exit(FatalIOError);
-            }
             eAir_ = e/mag(e);
         }
         if (fAir_.value() > 0 && mag(eAir_) < SMALL)
         {
             FatalIOErrorInFunction(dict)
                 << "Invalid value of keyword 'direction' in dictionary "
-                << dict.name() << ": direction = " << t
+                << dict.name() << ": direction = " << d
                 << " but g = " << g_.value() << " is zero" << nl
                 << exit(FatalIOError);
         }

@@ -47,25 +47,11 @@ BagnoldInletVelocityFvPatchVectorField
 {
     if (dict.found("frameVelocity"))
     {
-        ITstream& is = dict.lookup("frameVelocity");
-        token t(is);
-        if (t.isWord())
-        {
-            if (t.wordToken() != "depthAveraged")
-            {
-                FatalIOErrorInFunction(dict)
-                    << "Invalid value of keyword 'frameVelocity' in "
-                    << "dictionary " << dict.name() << ": frameVelocity = "
-                    << t.wordToken() << " (a vector or depthAveraged)" << nl
-                    << exit(FatalIOError);
-            }
-            depthAveragedFrame_ = true;
-        }
-        else
-        {
-            is.putBack(t);
-            is >> frameVelocity_;
-        }
+        depthAveragedFrame_ =
+            granularInput::readVectorOrWord
+            (
+                dict, "frameVelocity", {"depthAveraged"}, frameVelocity_
+            ) == "depthAveraged";
     }
 
     // The rheology and air of constant/granularProperties, read here without
