@@ -30,15 +30,21 @@ def fresh_case(name, dest=None, tutorial=False):
     return dst
 
 
-def foam(case, *cmd, timeout=3600):
-    """Run a command in case, assert exit status 0, return its seconds."""
+def foam_output(case, *cmd, timeout=3600):
+    """Run a command in case, assert exit status 0; return (stdout,
+    seconds)."""
     start = time.monotonic()
     res = run(list(cmd), case, timeout=timeout)
     seconds = time.monotonic() - start
     assert res.returncode == 0, (
         f"{' '.join(cmd)} failed in {case} (exit {res.returncode}):\n"
         + (res.stdout + res.stderr)[-3000:])
-    return seconds
+    return res.stdout, seconds
+
+
+def foam(case, *cmd, timeout=3600):
+    """Run a command in case, assert exit status 0, return its seconds."""
+    return foam_output(case, *cmd, timeout=timeout)[1]
 
 
 def set_entry(case, dictionary, entry, value):

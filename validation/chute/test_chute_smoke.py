@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-from cases import foam, fresh_case
+from cases import foam, foam_output, fresh_case
 from chute import post
 from exact import bagnold, chute as exact_chute
 
@@ -20,7 +20,7 @@ STEPS_END = "2e-3"
 def patch_value(case, time_name, field, patch):
     """The `value` of a patch of a written field, by foamDictionary:
     array (n,) or (n, 3)."""
-    res = foam_output(case, "foamDictionary", "-precision", "17", "-entry",
+    res, _ = foam_output(case, "foamDictionary", "-precision", "17", "-entry",
                       f"boundaryField.{patch}.value", "-value",
                       f"{time_name}/{field}")
     m = re.search(r"List<(\w+)>\s*(\d+)\s*\((.*)\)", res, re.S)
@@ -29,13 +29,6 @@ def patch_value(case, time_name, field, patch):
     values = np.array(m.group(3).replace("(", " ").replace(")", " ").split(),
                       dtype=float)
     return values if m.group(1) == "scalar" else values.reshape(n, 3)
-
-
-def foam_output(case, *cmd):
-    from conftest import run
-    res = run(list(cmd), case)
-    assert res.returncode == 0, f"{' '.join(cmd)} failed:\n{res.stderr}"
-    return res.stdout
 
 
 @pytest.fixture(scope="module")
@@ -110,8 +103,8 @@ def test_moving_frame(short):
     assert np.allclose(after[:, 0], before[:, 0] - ubar, rtol=0, atol=1e-9)
     assert np.allclose(after[:, 1:], before[:, 1:], rtol=0, atol=1e-12)
     assert math.isclose(post.frame_velocity(frame, t), ubar, rel_tol=1e-9)
-    base = foam_output(frame, "foamDictionary", "-entry",
-                       "boundaryField.base", f"{t}/U")
+    base, _ = foam_output(frame, "foamDictionary", "-entry",
+                          "boundaryField.base", f"{t}/U")
     assert re.search(r"type\s+fixedValue;", base), base
     assert re.search(rf"value\s+uniform\s+\(\s*{-ubar:.6g}\d*\s+0\s+0\s*\)",
                      base), base
