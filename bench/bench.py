@@ -1,0 +1,339 @@
+"""The benchmark driver behind bench/run (see bench/README.md).
+
+Generates the cases (generate.py) in bench/work/, runs every solver on every
+case, mesh and rank count the same number of fixed time steps, repeated
+--reps times (the repetitions interleaved, so that a slow spell of the
+machine spreads over all configurations), then writes bench/results.json
+and BENCHMARKS.md (report.py).
+"""
+
+import argparse
+import datetime
+import hashlib
+import json
+import os
+import platform
+import re
+import resource
+import shlex
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import generate
+import report
+
+BENCH = generate.BENCH
+REPO = generate.REPO
+WORK = BENCH / "work"
+RESULTS = BENCH / "results.json"
+MARKDOWN = REPO / "BENCHMARKS.md"
+
+RANKS = (1, 2)
+MESHES = ("155x16", "400x40")
+STEPS = 500
+QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1}
+MPIRUN = ("mpirun", "--oversubscribe", "--bind-to", "none")
+
+EXECUTION = re.compile(
+    r"^ExecutionTime = ([-+.0-9eE]+) s\s+ClockTime = ([-+.0-9eE]+) s",
+    re.MULTILINE)
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog="bench/run",
+        description="Time per cell per step of granularSegregationFoam "
+                    "against stock multiphaseInterFoam (bench/README.md).")
+    parser.add_argument("--reps", type=int,
+                        help="repetitions of every run (default 3; 1 with "
+                             "--quick)")
+    parser.add_argument("--steps", type=int,
+                        help=f"time steps per run (default {STEPS}; "
+                             f"{QUICK['steps']} with --quick)")
+    parser.add_argument("--k0", type=int,
+                        help="the timing runs from the end of step k0 to the "
+                             "last step (default steps/10, at least 1)")
+    parser.add_argument("--meshes", nargs="+", metavar="NXxNZ",
+                        help=f"meshes (default {' '.join(MESHES)}; "
+                             f"{QUICK['meshes'][0]} with --quick)")
+    parser.add_argument("--ranks", type=int, nargs="+", choices=RANKS,
+                        default=list(RANKS),
+                        help="MPI ranks (default 1 2; 1 alone on a busy "
+                             "machine)")
+    parser.add_argument("--quick", action="store_true",
+                        help="develop the harness: the small mesh, "
+                             f"{QUICK['steps']} steps, 1 repetition; "
+                             "labelled quick, not a measurement")
+    args = parser.parse_args(argv)
+    if args.reps is None:
+        args.reps = QUICK["reps"] if args.quick else 3
+    if args.steps is None:
+        args.steps = QUICK["steps"] if args.quick else STEPS
+    if args.meshes is None:
+        args.meshes = list(QUICK["meshes"] if args.quick else MESHES)
+    if args.k0 is None:
+        args.k0 = max(1, args.steps // 10)
+    if args.reps < 1 or args.steps < 2 or not 1 <= args.k0 < args.steps:
+        parser.error("need reps >= 1 and 1 <= k0 < steps")
+    meshes = []
+    for mesh in args.meshes:
+        match = re.fullmatch(r"(\d+)x(\d+)", mesh)
+        if not match:
+            parser.error(f"mesh '{mesh}' is not NXxNZ (e.g. 155x16)")
+        meshes.append((int(match[1]), int(match[2])))
+    args.meshes = meshes
+    args.ranks = sorted(set(args.ranks))
+    if args.ranks[0] != 1:
+        parser.error("--ranks needs 1, the reference of the efficiency")
+    return args
+
+
+def command_output(*cmd):
+    return subprocess.run(list(cmd), check=True, capture_output=True,
+                          text=True).stdout
+
+
+def load_average():
+    return [float(x) for x in Path("/proc/loadavg").read_text().split()[:3]]
+
+
+def cpu_seconds():
+    """(busy CPU seconds of the whole machine, CPU seconds of our finished
+    children): their increments over a run give the load of other users."""
+    fields = [int(x) for x in Path("/proc/stat").read_text()
+              .splitlines()[0].split()[1:]]
+    # user nice system idle iowait irq softirq steal
+    busy = sum(fields[:3]) + sum(fields[5:8])
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (busy / os.sysconf("SC_CLK_TCK"),
+            children.ru_utime + children.ru_stime)
+
+
+def machine():
+    cpu = {}
+    for line in command_output("lscpu").splitlines():
+        key, _, value = line.partition(":")
+        cpu[key.strip()] = value.strip()
+    mem_kb = int(re.search(r"MemTotal:\s+(\d+)",
+                           Path("/proc/meminfo").read_text())[1])
+    return {
+        "cpu": cpu.get("Model name", "unknown"),
+        "cpus": int(cpu.get("CPU(s)", 0)),
+        "cores_per_socket": cpu.get("Core(s) per socket"),
+        "threads_per_core": cpu.get("Thread(s) per core"),
+        "sockets": cpu.get("Socket(s)"),
+        "memory_GB": round(mem_kb / 1024 ** 2, 1),
+        "kernel": platform.release(),
+        "os": platform.freedesktop_os_release().get("PRETTY_NAME", "")
+              if hasattr(platform, "freedesktop_os_release") else "",
+    }
+
+
+def sha256(path):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def executables():
+    """The two solvers: Debian's stock binary and the project's build."""
+    granular = shutil.which("granularSegregationFoam")
+    appbin = os.environ.get("FOAM_USER_APPBIN", "")
+    if not granular or not granular.startswith(appbin):
+        sys.exit("bench/run: granularSegregationFoam is not in "
+                 "$FOAM_USER_APPBIN; build the project (./Allwmake)")
+    stock = "/usr/bin/multiphaseInterFoam"
+    if not os.access(stock, os.X_OK):
+        sys.exit(f"bench/run: {stock} not found (Debian's openfoam package)")
+    return {"stock": stock, "granular": granular}
+
+
+def software(exes):
+    git = ["git", "-C", str(REPO)]
+    dirty = command_output(*git, "status", "--porcelain", "--",
+                           "applications", "src").split("\n")
+    library = Path(os.environ["FOAM_USER_LIBBIN"]) / "libgranularRheology.so"
+    return {
+        "openfoam": os.environ.get("WM_PROJECT_VERSION", ""),
+        "mpi": command_output("mpirun", "--version").splitlines()[0],
+        "commit": command_output(*git, "rev-parse", "HEAD").strip(),
+        "uncommitted_sources": [line[3:] for line in dirty if line],
+        "binaries": {
+            str(p): sha256(p)
+            for p in (exes["stock"], exes["granular"], library)},
+    }
+
+
+def parse_log(path, steps):
+    """ExecutionTime and ClockTime at the end of every step."""
+    text = Path(path).read_text(errors="replace")
+    if "FOAM FATAL" in text or "FOAM aborting" in text:
+        raise RuntimeError(f"the solver failed: see {path}")
+    pairs = [(float(a), float(b)) for a, b in EXECUTION.findall(text)]
+    if len(pairs) != steps:
+        raise RuntimeError(f"{path}: {len(pairs)} time steps, not {steps}")
+    return [a for a, _ in pairs], [b for _, b in pairs]
+
+
+def run_one(case_dir, exe, ranks, rep, steps, k0, cells):
+    """One run of the solver; its timing from the log, its peak RSS."""
+    tag = f"np{ranks}.rep{rep}"
+    log = case_dir / f"log.{Path(exe).name}.{tag}"
+    rss_prefix = case_dir / f"rss.{tag}"
+    for old in case_dir.glob(f"rss.{tag}.*"):
+        old.unlink()
+    cmd = [str(BENCH / "rankrss"), str(rss_prefix), exe]
+    if ranks > 1:
+        cmd = [*MPIRUN[:1], "-np", str(ranks), *MPIRUN[1:], *cmd, "-parallel"]
+    load_before = load_average()
+    busy0, ours0 = cpu_seconds()
+    start = time.monotonic()
+    with open(log, "w") as out:
+        proc = subprocess.run(cmd, cwd=case_dir, stdout=out,
+                              stderr=subprocess.STDOUT,
+                              env=generate.case_env(case_dir))
+    wall = time.monotonic() - start
+    busy1, ours1 = cpu_seconds()
+    if proc.returncode != 0:
+        raise RuntimeError(f"{shlex.join(cmd)} failed in {case_dir} "
+                           f"(exit {proc.returncode}); see {log}")
+    execution, clock = parse_log(log, steps)
+    rss = []
+    for rank in range(ranks):
+        lines = (rss_prefix.parent / f"{rss_prefix.name}.{rank}") \
+            .read_text().split()
+        rss.append(int(lines[-1]))
+    per_step = (execution[-1] - execution[k0 - 1]) / (steps - k0)
+    return {
+        "ranks": ranks, "rep": rep,
+        "log": str(log.relative_to(REPO)),
+        "command": shlex.join(cmd),
+        "execution_k0_s": execution[k0 - 1],
+        "execution_last_s": execution[-1],
+        "clock_k0_s": clock[k0 - 1],
+        "clock_last_s": clock[-1],
+        "s_per_step": per_step,
+        "us_per_cell_step": per_step / cells * 1e6,
+        "wall_s": round(wall, 3),
+        "rss_kB": rss,
+        "rss_MB": sum(rss) / 1024,
+        "cpu_s": round(ours1 - ours0, 3),
+        # cores used by other processes during the run (ours excluded)
+        "other_load": round(max(0.0, (busy1 - busy0) - (ours1 - ours0))
+                            / wall, 3),
+        "load_before": load_before,
+        "load_after": load_average(),
+    }
+
+
+def summarise(configs, runs, ranks_used):
+    """Min and median over the repetitions, the ratio to stock and the
+    parallel efficiency, one row per configuration and rank count."""
+    rows = []
+    for config in configs:
+        for ranks in ranks_used:
+            mine = [r for r in runs
+                    if r["config"] == config["name"] and r["ranks"] == ranks]
+            us = [r["us_per_cell_step"] for r in mine]
+            rows.append({
+                "config": config["name"], "case": config["case"],
+                "solver": config["solver"],
+                "application": generate.APPLICATION[config["solver"]],
+                "mesh": config["mesh"], "cells": config["cells"],
+                "ranks": ranks, "steps": config["steps"],
+                "k0": config["k0"], "deltaT": config["deltaT"],
+                "reps": len(us),
+                "us_min": min(us), "us_median": statistics.median(us),
+                "rss_MB": max(r["rss_MB"] for r in mine),
+            })
+    for row in rows:
+        stock = next(s for s in rows
+                     if s["solver"] == "stock" and s["case"] == row["case"]
+                     and s["mesh"] == row["mesh"]
+                     and s["ranks"] == row["ranks"])
+        row["ratio_min"] = row["us_min"] / stock["us_min"]
+        row["ratio_median"] = row["us_median"] / stock["us_median"]
+        serial = next(s for s in rows
+                      if s["config"] == row["config"] and s["ranks"] == 1)
+        # t1/(N tN): the same cells, so the times per cell and step will do
+        row["efficiency_min"] = (serial["us_min"]
+                                 / (row["ranks"] * row["us_min"]))
+        row["efficiency_median"] = (serial["us_median"]
+                                    / (row["ranks"] * row["us_median"]))
+    return rows
+
+
+def main(argv):
+    args = parse_args(argv)
+    exes = executables()
+    results = {
+        "quick": args.quick,
+        "command": shlex.join(["bench/run", *argv]),
+        "date": datetime.datetime.now().astimezone().isoformat(
+            timespec="seconds"),
+        "machine": machine(),
+        "software": software(exes),
+        "settings": {
+            "meshes": [f"{nx}x{nz}" for nx, nz in args.meshes],
+            "steps": args.steps, "k0": args.k0, "reps": args.reps,
+            "ranks": args.ranks, "mpirun": shlex.join(MPIRUN),
+            "deltaT": {f"{nx}x{nz}": generate.delta_t(nx, nz)
+                       for nx, nz in args.meshes},
+        },
+        "drift": generate.drift(),
+    }
+    for note in results["drift"]:
+        print(f"bench/run: note: {note}", flush=True)
+
+    configs = []
+    for nx, nz in args.meshes:
+        mesh = f"{nx}x{nz}"
+        shutil.rmtree(WORK / mesh, ignore_errors=True)
+        for case in generate.CASES:
+            for solver in generate.SOLVERS:
+                name = f"{mesh}/{case}-{solver}"
+                case_dir = WORK / name
+                print(f"bench/run: generating {case_dir.relative_to(REPO)}",
+                      flush=True)
+                params = generate.prepare(case_dir, case, solver, nx, nz,
+                                          args.steps, args.ranks)
+                configs.append({
+                    "name": name, "case": case, "solver": solver,
+                    "mesh": mesh, "dir": case_dir,
+                    "cells": params["cells"], "steps": args.steps,
+                    "k0": args.k0, "deltaT": params["deltaT"],
+                })
+
+    runs = []
+    total = args.reps * len(configs) * len(args.ranks)
+    for rep in range(1, args.reps + 1):
+        for config in configs:
+            for ranks in args.ranks:
+                record = run_one(config["dir"], exes[config["solver"]],
+                                 ranks, rep, args.steps, args.k0,
+                                 config["cells"])
+                record["config"] = config["name"]
+                runs.append(record)
+                print(f"bench/run: [{len(runs)}/{total}] rep {rep} "
+                      f"{config['name']} np {ranks}: "
+                      f"{record['us_per_cell_step']:.3f} us/cell/step, "
+                      f"{record['rss_MB']:.0f} MB, "
+                      f"{record['wall_s']:.1f} s", flush=True)
+                (WORK / "results.partial.json").write_text(
+                    json.dumps(runs, indent=1))
+
+    for config in configs:
+        config["dir"] = str(config["dir"].relative_to(REPO))
+    results["configs"] = configs
+    results["runs"] = runs
+    results["summary"] = summarise(configs, runs, args.ranks)
+    RESULTS.write_text(json.dumps(results, indent=1) + "\n")
+    report.write(results, MARKDOWN)
+    print(f"bench/run: wrote {RESULTS.relative_to(REPO)} and "
+          f"{MARKDOWN.relative_to(REPO)}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
