@@ -65,6 +65,13 @@ def times(case, function="profile"):
     return sorted((d.name for d in base.iterdir() if d.is_dir()), key=float)
 
 
+def last_two(case, function="profile"):
+    """Names of the last two sampling times."""
+    t = times(case, function)
+    assert len(t) >= 2, f"{case}: fewer than two sampled times {t}"
+    return t[-2], t[-1]
+
+
 def profiles(case, time_name, function="profile", set_name="centreline"):
     """Sampled fields at a time: {'z': ..., field: column, 'U': (n, 3)}."""
     folder = case / "postProcessing" / function / time_name

@@ -19,8 +19,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from cases import (fresh_case, profiles, run_case, set_entry,  # noqa: E402
-                   times, volumes, write_results)
+from cases import (fresh_case, last_two, profiles, run_case,  # noqa: E402
+                   set_entry, times, volumes, write_results)
 from exact import bagnold, errors, grayChugunov  # noqa: E402
 
 pytestmark = pytest.mark.validation
@@ -28,13 +28,6 @@ pytestmark = pytest.mark.validation
 H = 5e-3                    # grain depth [m]
 ZETA = math.radians(24.0)   # slope of the layer
 TABLE3 = grayChugunov.TABLE3
-
-
-def last_two(case):
-    """Names of the last two sampling times."""
-    t = times(case)
-    assert len(t) >= 2, f"{case}: fewer than two sampled times {t}"
-    return t[-2], t[-1]
 
 
 def plot_gray_chugunov(case, name, zhat, phi, Pe, t_end, l2):

@@ -24,7 +24,10 @@ Description
     corrector re-evaluates the rheology from the latest U and p.
 
     The time step follows the CFL (4.11) with its viscous part, plus the
-    segregation and diffusion rates; each part is logged every step.
+    segregation and diffusion rates; each part is logged every step.  With
+    fvSolution PIMPLE { momentumPredictor yes; viscousStress implicit; }
+    the stress is solved implicitly in the momentum predictor and the
+    viscous part no longer limits the step (see granularMixture.H).
 
 \*---------------------------------------------------------------------------*/
 
@@ -59,6 +62,12 @@ int main(int argc, char *argv[])
     #include "createFields.H"
     #include "initCorrectPhi.H"
     #include "createUfIfPresent.H"
+
+    // fvSolution PIMPLE { viscousStress explicit | implicit; }: does the
+    // viscous part of (4.11) limit the time step?
+    const bool viscousLimit =
+        granularMixture::readViscousStress(pimple.dict())
+     == granularMixture::viscousStress::explicitStress;
 
     turbulence->validate();
 
