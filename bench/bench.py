@@ -1,10 +1,13 @@
 """The benchmark driver behind bench/run (see bench/README.md).
 
-Generates the cases (generate.py) in bench/work/, runs every solver on every
-case, mesh and rank count the same number of fixed time steps, repeated
---reps times (the repetitions interleaved, so that a slow spell of the
-machine spreads over all configurations), then writes bench/results.json
-and BENCHMARKS.md (report.py).
+Generates the cases (generate.py) in bench/work/, runs every solver
+configuration (stock, granular, granular-implicit) on every case, mesh and
+rank count the same number of fixed time steps, repeated --reps times (the
+repetitions interleaved, so that a slow spell of the machine spreads over
+all configurations); then the time per simulated second: the granular
+solver, explicit and implicit, serial, on the chute's 155 x 16 mesh over
+--interval simulated seconds with the time step adjusted to the CFL (4.11).
+Writes bench/results.json and BENCHMARKS.md (report.py).
 """
 
 import argparse
@@ -35,19 +38,32 @@ MARKDOWN = REPO / "BENCHMARKS.md"
 RANKS = (1, 2)
 MESHES = ("155x16", "400x40")
 STEPS = 500
-QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1}
+INTERVAL = 0.2
+QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1, "interval": 0.02}
+# The time per simulated second: case, mesh, solver configurations (serial)
+ADAPTIVE = {"case": "chute", "mesh": (155, 16),
+            "solvers": ("granular", "granular-implicit")}
 MPIRUN = ("mpirun", "--oversubscribe", "--bind-to", "none")
 
 EXECUTION = re.compile(
     r"^ExecutionTime = ([-+.0-9eE]+) s\s+ClockTime = ([-+.0-9eE]+) s",
     re.MULTILINE)
+NUMBER = r"([-+.0-9eE]+|nan|inf)"
+STEP_TIME = re.compile(r"^Time = ([-+.0-9eE]+)$", re.MULTILINE)
+DELTA_T = re.compile(r"^deltaT = ([-+.0-9eE]+)$", re.MULTILINE)
+CFL = re.compile(
+    rf"^CFL \(4\.11\) max: convective = {NUMBER} viscous = {NUMBER} "
+    rf"segregation = {NUMBER} diffusion = {NUMBER} total = {NUMBER} "
+    r"\(limited by (\w+)\)", re.MULTILINE)
 
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog="bench/run",
         description="Time per cell per step of granularSegregationFoam "
-                    "against stock multiphaseInterFoam (bench/README.md).")
+                    "(explicit and implicit viscous stress) against stock "
+                    "multiphaseInterFoam, and its time per simulated "
+                    "second, explicit and implicit (bench/README.md).")
     parser.add_argument("--reps", type=int,
                         help="repetitions of every run (default 3; 1 with "
                              "--quick)")
@@ -64,9 +80,19 @@ def parse_args(argv):
                         default=list(RANKS),
                         help="MPI ranks (default 1 2; 1 alone on a busy "
                              "machine)")
+    parser.add_argument("--interval", type=float, metavar="SECONDS",
+                        help="simulated interval of the time per simulated "
+                             f"second (default {INTERVAL}; "
+                             f"{QUICK['interval']} with --quick; 0 leaves "
+                             "it out)")
+    parser.add_argument("--max-delta-t", type=float, default=1.0,
+                        metavar="SECONDS",
+                        help="maxDeltaT of the time per simulated second "
+                             "(default 1: no cap; the tutorial's is 1e-3)")
     parser.add_argument("--quick", action="store_true",
                         help="develop the harness: the small mesh, "
-                             f"{QUICK['steps']} steps, 1 repetition; "
+                             f"{QUICK['steps']} steps, 1 repetition, "
+                             f"{QUICK['interval']} s simulated; "
                              "labelled quick, not a measurement")
     args = parser.parse_args(argv)
     if args.reps is None:
@@ -77,6 +103,10 @@ def parse_args(argv):
         args.meshes = list(QUICK["meshes"] if args.quick else MESHES)
     if args.k0 is None:
         args.k0 = max(1, args.steps // 10)
+    if args.interval is None:
+        args.interval = QUICK["interval"] if args.quick else INTERVAL
+    if args.interval < 0 or args.max_delta_t <= 0:
+        parser.error("need --interval >= 0 and --max-delta-t > 0")
     if args.reps < 1 or args.steps < 2 or not 1 <= args.k0 < args.steps:
         parser.error("need reps >= 1 and 1 <= k0 < steps")
     meshes = []
@@ -138,7 +168,8 @@ def sha256(path):
 
 
 def executables():
-    """The two solvers: Debian's stock binary and the project's build."""
+    """The executable of every solver configuration: Debian's stock binary
+    and the project's build (explicit and implicit)."""
     granular = shutil.which("granularSegregationFoam")
     appbin = os.environ.get("FOAM_USER_APPBIN", "")
     if not granular or not granular.startswith(appbin):
@@ -147,7 +178,8 @@ def executables():
     stock = "/usr/bin/multiphaseInterFoam"
     if not os.access(stock, os.X_OK):
         sys.exit(f"bench/run: {stock} not found (Debian's openfoam package)")
-    return {"stock": stock, "granular": granular}
+    return {"stock": stock, "granular": granular,
+            "granular-implicit": granular}
 
 
 def software(exes):
@@ -228,6 +260,124 @@ def run_one(case_dir, exe, ranks, rep, steps, k0, cells):
     }
 
 
+def run_adaptive(case_dir, exe, rep, interval):
+    """One serial run over the simulated interval with the time step
+    adjusted: its steps, time steps, viscous CFL parts and times.  The
+    times run from the end of step 1 (start-up and the first step left
+    out, as k0 in the fixed-step runs) to the end of the last step: CPU
+    from ExecutionTime, wall from the arrival of the ExecutionTime lines
+    (ClockTime has a resolution of 1 s)."""
+    tag = f"np1.rep{rep}"
+    log = case_dir / f"log.{Path(exe).name}.{tag}"
+    cmd = [exe]
+    load_before = load_average()
+    busy0, ours0 = cpu_seconds()
+    start = time.monotonic()
+    stamps = []
+    with open(log, "w") as out:
+        proc = subprocess.Popen(cmd, cwd=case_dir, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True,
+                                errors="replace",
+                                env=generate.case_env(case_dir))
+        for line in proc.stdout:
+            if line.startswith("ExecutionTime = "):
+                stamps.append(time.monotonic() - start)
+            out.write(line)
+        proc.wait()
+    wall = time.monotonic() - start
+    busy1, ours1 = cpu_seconds()
+    if proc.returncode != 0:
+        raise RuntimeError(f"{shlex.join(cmd)} failed in {case_dir} "
+                           f"(exit {proc.returncode}); see {log}")
+    text = log.read_text(errors="replace")
+    if "FOAM FATAL" in text or "FOAM aborting" in text:
+        raise RuntimeError(f"the solver failed: see {log}")
+    loop = text.partition("Starting time loop")[2]
+    execution = [float(a) for a, _ in EXECUTION.findall(loop)]
+    times = [float(t) for t in STEP_TIME.findall(loop)]
+    deltas = [float(d) for d in DELTA_T.findall(loop)]
+    # (4.11) as printed before every step, with the previous step's Delta t
+    cfl = CFL.findall(loop)
+    steps = len(execution)
+    if not (steps >= 2 and len(times) == steps and len(deltas) == steps
+            and len(cfl) == steps and len(stamps) == steps):
+        raise RuntimeError(f"{log}: {steps} ExecutionTime, {len(times)} "
+                           f"Time, {len(deltas)} deltaT, {len(cfl)} CFL "
+                           "lines: not one of each per step")
+    if times[-1] < interval * (1 - 1e-6) - 0.5 * deltas[-1]:
+        raise RuntimeError(f"{log}: stopped at t = {times[-1]}, not "
+                           f"{interval}")
+    simulated = times[-1] - times[0]
+    viscous = [float(c[1]) for c in cfl]
+    limited = {}
+    for c in cfl:
+        limited[c[5]] = limited.get(c[5], 0) + 1
+    return {
+        "ranks": 1, "rep": rep,
+        "log": str(log.relative_to(REPO)),
+        "command": shlex.join(cmd),
+        "steps": steps,
+        "t_first_s": times[0], "t_last_s": times[-1],
+        "deltaT_min_s": min(deltas), "deltaT_median_s":
+            statistics.median(deltas), "deltaT_max_s": max(deltas),
+        "viscous_cfl_median": statistics.median(viscous),
+        "viscous_cfl_max": max(viscous),
+        "limited_by": limited,
+        "execution_first_s": execution[0],
+        "execution_last_s": execution[-1],
+        "wall_first_s": round(stamps[0], 3),
+        "wall_last_s": round(stamps[-1], 3),
+        "cpu_per_simulated_s": (execution[-1] - execution[0]) / simulated,
+        "wall_per_simulated_s": (stamps[-1] - stamps[0]) / simulated,
+        "wall_s": round(wall, 3),
+        "cpu_s": round(ours1 - ours0, 3),
+        "other_load": round(max(0.0, (busy1 - busy0) - (ours1 - ours0))
+                            / wall, 3),
+        "load_before": load_before,
+        "load_after": load_average(),
+    }
+
+
+def summarise_adaptive(configs, runs):
+    """Medians over the repetitions of every configuration, and the
+    speed-up of the implicit configuration (explicit time over implicit
+    time per simulated second)."""
+    rows = []
+    for config in configs:
+        mine = [r for r in runs if r["config"] == config["name"]]
+
+        def median(key):
+            return statistics.median(r[key] for r in mine)
+
+        rows.append({
+            "config": config["name"], "case": config["case"],
+            "solver": config["solver"],
+            "application": generate.APPLICATION[config["solver"]],
+            "mesh": config["mesh"], "cells": config["cells"], "ranks": 1,
+            "interval_s": config["interval"], "reps": len(mine),
+            "steps": median("steps"),
+            "deltaT_median_s": median("deltaT_median_s"),
+            "viscous_cfl_median": median("viscous_cfl_median"),
+            "wall_per_simulated_s": median("wall_per_simulated_s"),
+            "cpu_per_simulated_s": median("cpu_per_simulated_s"),
+            "wall_per_simulated_s_min":
+                min(r["wall_per_simulated_s"] for r in mine),
+            "cpu_per_simulated_s_min":
+                min(r["cpu_per_simulated_s"] for r in mine),
+        })
+    explicit = next(r for r in rows if r["solver"] == "granular")
+    implicit = next(r for r in rows if r["solver"] == "granular-implicit")
+    speedup = {
+        "wall": explicit["wall_per_simulated_s"]
+                / implicit["wall_per_simulated_s"],
+        "cpu": explicit["cpu_per_simulated_s"]
+               / implicit["cpu_per_simulated_s"],
+        "deltaT": implicit["deltaT_median_s"] / explicit["deltaT_median_s"],
+        "steps": explicit["steps"] / implicit["steps"],
+    }
+    return rows, speedup
+
+
 def summarise(configs, runs, ranks_used):
     """Min and median over the repetitions, the ratio to stock and the
     parallel efficiency, one row per configuration and rank count."""
@@ -281,6 +431,8 @@ def main(argv):
             "ranks": args.ranks, "mpirun": shlex.join(MPIRUN),
             "deltaT": {f"{nx}x{nz}": generate.delta_t(nx, nz)
                        for nx, nz in args.meshes},
+            "solvers": list(generate.SOLVERS),
+            "implicit_fvSolution": generate.IMPLICIT,
         },
         "drift": generate.drift(),
     }
@@ -306,6 +458,25 @@ def main(argv):
                     "k0": args.k0, "deltaT": params["deltaT"],
                 })
 
+    adaptive = []
+    if args.interval > 0:
+        nx, nz = ADAPTIVE["mesh"]
+        shutil.rmtree(WORK / "adaptive", ignore_errors=True)
+        for solver in ADAPTIVE["solvers"]:
+            name = f"adaptive/{nx}x{nz}/{ADAPTIVE['case']}-{solver}"
+            case_dir = WORK / name
+            print(f"bench/run: generating {case_dir.relative_to(REPO)}",
+                  flush=True)
+            params = generate.prepare(case_dir, ADAPTIVE["case"], solver,
+                                      nx, nz, 0, [1], interval=args.interval,
+                                      max_delta_t=args.max_delta_t)
+            adaptive.append({
+                "name": name, "case": ADAPTIVE["case"], "solver": solver,
+                "mesh": f"{nx}x{nz}", "dir": case_dir,
+                "cells": params["cells"], "interval": args.interval,
+                "deltaT_initial": params["deltaT"],
+            })
+
     runs = []
     total = args.reps * len(configs) * len(args.ranks)
     for rep in range(1, args.reps + 1):
@@ -324,11 +495,46 @@ def main(argv):
                 (WORK / "results.partial.json").write_text(
                     json.dumps(runs, indent=1))
 
-    for config in configs:
+    adaptive_runs = []
+    for rep in range(1, args.reps + 1):
+        for config in adaptive:
+            record = run_adaptive(config["dir"], exes[config["solver"]], rep,
+                                  args.interval)
+            record["config"] = config["name"]
+            adaptive_runs.append(record)
+            print(f"bench/run: [{len(adaptive_runs)}/"
+                  f"{args.reps * len(adaptive)}] rep {rep} {config['name']} "
+                  f"over {args.interval:g} s: {record['steps']} steps, "
+                  f"median deltaT {record['deltaT_median_s']:.3g} s, "
+                  f"viscous CFL {record['viscous_cfl_median']:.3g}, "
+                  f"{record['cpu_per_simulated_s']:.3g} CPU s per "
+                  f"simulated s, {record['wall_s']:.1f} s", flush=True)
+            (WORK / "results.partial.json").write_text(
+                json.dumps({"runs": runs, "adaptive_runs": adaptive_runs},
+                           indent=1))
+
+    for config in configs + adaptive:
         config["dir"] = str(config["dir"].relative_to(REPO))
     results["configs"] = configs
     results["runs"] = runs
     results["summary"] = summarise(configs, runs, args.ranks)
+    results["per_simulated_second"] = None
+    if adaptive:
+        rows, speedup = summarise_adaptive(adaptive, adaptive_runs)
+        results["per_simulated_second"] = {
+            "settings": {
+                "case": ADAPTIVE["case"], "mesh": adaptive[0]["mesh"],
+                "ranks": 1, "interval_s": args.interval,
+                "reps": args.reps,
+                "controlDict": {**generate.ADJUSTABLE_STEP,
+                                "maxDeltaT": args.max_delta_t,
+                                "deltaT": adaptive[0]["deltaT_initial"]},
+            },
+            "configs": adaptive,
+            "runs": adaptive_runs,
+            "summary": rows,
+            "speedup": speedup,
+        }
     RESULTS.write_text(json.dumps(results, indent=1) + "\n")
     report.write(results, MARKDOWN)
     print(f"bench/run: wrote {RESULTS.relative_to(REPO)} and "

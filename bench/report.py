@@ -21,6 +21,16 @@ CASE_TITLE = {
     "drum": "drum-like (closed)",
 }
 
+SOLVER_TITLE = {
+    "stock": "multiphaseInterFoam",
+    "granular": "granularSegregationFoam",
+    "granular-implicit": "granularSegregationFoam (implicit)",
+}
+
+
+def solver_title(row):
+    return SOLVER_TITLE.get(row["solver"], row["application"])
+
 
 def number(x, decimals=3):
     return f"{x:.{decimals}f}"
@@ -61,7 +71,7 @@ def table(results):
         efficiency = ("" if row["ranks"] == 1
                       else f"{100 * row['efficiency_median']:.0f} %")
         lines.append(
-            f"| {CASE_TITLE[row['case']]} | {row['application']} "
+            f"| {CASE_TITLE[row['case']]} | {solver_title(row)} "
             f"| {row['cells']} ({nx} × {nz}) | {row['ranks']} "
             f"| {row['steps']} | {number(row['us_min'])} "
             f"| {number(row['us_median'])} | {ratio} "
@@ -69,15 +79,87 @@ def table(results):
     return lines
 
 
+def significant(x, digits=3):
+    return f"{x:.{digits}g}"
+
+
+def adaptive_table(adaptive):
+    head = ("| case | solver | cells | ranks | simulated s | steps "
+            "| median Δt s | median viscous CFL | wall s per simulated s "
+            "| CPU s per simulated s | speed-up (wall, CPU) |")
+    lines = [head, "|---|---|---|---|---|---|---|---|---|---|---|"]
+    speedup = adaptive["speedup"]
+    for row in adaptive["summary"]:
+        nx, nz = row["mesh"].split("x")
+        faster = ("1" if row["solver"] == "granular"
+                  else f"{speedup['wall']:.1f}, {speedup['cpu']:.1f}")
+        lines.append(
+            f"| {CASE_TITLE[row['case']]} | {solver_title(row)} "
+            f"| {row['cells']} ({nx} × {nz}) | {row['ranks']} "
+            f"| {row['interval_s']:g} | {row['steps']:g} "
+            f"| {significant(row['deltaT_median_s'])} "
+            f"| {significant(row['viscous_cfl_median'])} "
+            f"| {significant(row['wall_per_simulated_s'])} "
+            f"| {significant(row['cpu_per_simulated_s'])} | {faster} |")
+    return lines
+
+
+def adaptive_section(results):
+    adaptive = results.get("per_simulated_second")
+    if not adaptive:
+        return []
+    s = adaptive["settings"]
+    c = s["controlDict"]
+    implicit = results["settings"].get("implicit_fvSolution", {})
+    return [
+        "## Time per simulated second",
+        "",
+        f"    {results['command']}",
+        "",
+        "(the same command as the table above; `--interval 0` leaves this "
+        "one out). Every run is `granularSegregationFoam`, serial, in "
+        + " and ".join(f"`{c['dir']}`" for c in adaptive["configs"])
+        + ". "
+        f"The chute on {s['mesh'].replace('x', ' × ')}, serial, "
+        f"{s['interval_s']:g} s simulated from rest, "
+        f"{s['reps']} repetition(s) (interleaved with each other, after "
+        "the runs above); the time step adjusted to the CFL (4.11): "
+        f"controlDict `adjustTimeStep {c['adjustTimeStep']}; "
+        f"maxCo {c['maxCo']:g}; maxAlphaCo {c['maxAlphaCo']:g}; "
+        f"maxDeltaT {c['maxDeltaT']:g};`, from deltaT {c['deltaT']:g} s "
+        "(growing by at most 20 % a step). Explicit: the common "
+        "fvSolution; implicit: PIMPLE `"
+        + " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
+        + "`.",
+        "",
+        *adaptive_table(adaptive),
+        "",
+        "- steps, median Δt: the steps the solver took over the interval "
+        "and the median of their Δt; median over the repetitions.",
+        "- median viscous CFL: the median over the steps of the viscous "
+        "part of (4.11) the solver prints before every step (with the "
+        "previous step's Δt), i.e. Δt over the viscous-CFL step; with "
+        "`viscousStress implicit` it does not limit Δt.",
+        "- wall and CPU s per simulated s: from the end of the first step "
+        "(start-up left out) to the end of the last, over the simulated "
+        "time between them; CPU from `ExecutionTime`, wall from the "
+        "arrival of its log lines; median over the repetitions.",
+        "- speed-up: the explicit run's time per simulated second over the "
+        "implicit one's (medians).",
+    ]
+
+
 def warnings(results):
     lines = []
-    busy = [r for r in results["runs"] if r["other_load"] > BUSY]
+    adaptive = results.get("per_simulated_second") or {}
+    all_runs = results["runs"] + adaptive.get("runs", [])
+    busy = [r for r in all_runs if r["other_load"] > BUSY]
     if busy:
         worst = max(busy, key=lambda r: r["other_load"])
         lines.append(
             f"- **The machine was not idle**: other processes used more "
             f"than {BUSY} cores during {len(busy)} of "
-            f"{len(results['runs'])} runs (at most "
+            f"{len(all_runs)} runs (at most "
             f"{worst['other_load']:.2f} cores, {worst['config']} on "
             f"{worst['ranks']} rank(s)); the MPI runs suffer most. "
             "Per-run loads: `other_load` in bench/results.json.")
@@ -88,20 +170,29 @@ def warnings(results):
 
 def write(results, path):
     s = results["settings"]
+    adaptive = results.get("per_simulated_second")
     lines = ["# Benchmarks", ""]
     if results["quick"]:
+        simulated = (f", {adaptive['settings']['interval_s']:g} s "
+                     "simulated" if adaptive else "")
         lines += [
             "> **QUICK RUN** (`bench/run --quick`): "
-            f"{s['steps']} steps, {s['reps']} repetition(s), the small mesh. "
+            f"{s['steps']} steps, {s['reps']} repetition(s), the small mesh"
+            f"{simulated}. "
             "It checks that the harness works end to end; its numbers are "
             "not a measurement (start-up dominates, ExecutionTime has a "
             "resolution of 0.01 s). Run `bench/run` on an idle machine for "
             "the benchmark.",
             ""]
     lines += [
-        "Time per cell per time step of `granularSegregationFoam` against "
+        "Time per cell per time step of `granularSegregationFoam`, with "
+        "the viscous stress explicit (the paper's) and implicit "
+        "(`viscousStress implicit`), against "
         "stock `multiphaseInterFoam` (v1912, Debian's binary) on the same "
-        "meshes, the same fixed time steps, schemes and linear solvers. "
+        "meshes, the same fixed time steps, schemes and linear solvers"
+        + ("; then the time per simulated second of the granular solver, "
+           "explicit and implicit, with the time step adjusted to its CFL. "
+           if adaptive else ". ") +
         "The cases, what differs between the solvers and why: "
         "[bench/README.md](bench/README.md). Raw numbers: "
         "`bench/results.json`.",
@@ -136,7 +227,16 @@ def write(results, path):
         "%M`) summed over the ranks, the largest of the repetitions.",
         "- parallel efficiency: t1/(2 t2) of the medians, t1 and t2 the "
         "times per step on 1 and 2 ranks.",
+        "- granularSegregationFoam (implicit): fvSolution PIMPLE "
+        "`momentumPredictor yes; viscousStress implicit; nCorrectors 4;` "
+        "at the same fixed Δt: a momentum solve and 4 pressure correctors "
+        "a step instead of 2, so a step costs more"
+        + ("; the time step it allows is in the next table."
+           if adaptive else "."),
     ]
+    section = adaptive_section(results)
+    if section:
+        lines += ["", *section]
     notes = warnings(results)
     if notes:
         lines += ["", "## Warnings", "", *notes]
