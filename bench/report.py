@@ -228,8 +228,8 @@ def write(results, path):
         "- parallel efficiency: t1/(2 t2) of the medians, t1 and t2 the "
         "times per step on 1 and 2 ranks.",
         "- granularSegregationFoam (implicit): fvSolution PIMPLE "
-        "`momentumPredictor yes; viscousStress implicit; nCorrectors 4;` "
-        "at the same fixed Δt: a momentum solve and 4 pressure correctors "
+        "`momentumPredictor yes; viscousStress implicit; nCorrectors 10;` "
+        "at the same fixed Δt: a momentum solve and 10 pressure correctors "
         "a step instead of 2, so a step costs more"
         + ("; the time step it allows is in the next table."
            if adaptive else "."),
