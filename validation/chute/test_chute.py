@@ -35,13 +35,15 @@ T3 = grayChugunov.TABLE3
 FRAME_START = "8"           # lab-frame time the moving frame starts from
 FRAME_END = "14"            # end of the moving-frame run (section 5.6)
 FIGURE2_MESHES = (20, 40)
-# Tolerances on the coarse CI mesh (16 cells over L_z, 13 over h).  The
-# issue's targets (Bagnold 1 %, Gray-Chugunov 3 %, depth mean 0.005) are
-# recorded beside them; the coarse mesh does not reach the last two (the
-# Pe = 32 transition spans about 1.5 cells), see tutorials/chute/README.md.
-TOL_U = 0.02
-TOL_PHIS = 0.15
-TOL_PHIBAR = 0.012
+# Tolerances on the CI mesh (155 x 32: 32 cells over L_z, 26 over h), the
+# issue's targets (Bagnold 1 %, Gray-Chugunov 3 %, depth mean 0.005) but
+# Gray-Chugunov's: measured 3.02 % on this mesh (9.7 % on 155 x 16; the
+# Pe = 32 transition spans 2.5 cells).  At 40 cells over L_z, where 2.1 %
+# was expected, the air at the outlet did not settle with the implicit
+# viscous stress (tutorials/chute/README.md).
+TOL_U = 0.01
+TOL_PHIS = 0.035
+TOL_PHIBAR = 0.005
 TOL_FRONT_CELLS = 3   # cells over L_z; square cells, L_x = 2 cm
 SHARPENINGS = ("none", "counterGradient", "segregation")
 
