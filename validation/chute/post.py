@@ -507,12 +507,14 @@ def figure4(z, u, phis, out, h, Pe, phibar, zeta=ZETA,
     the air (small_fraction): those velocities are drawn grey and left out
     of the errors.  `where` names the sampled column in the title.
     Returns {'path', 'u_l2', 'phis_l2', 'phis_mean'}: relative L2 errors
-    and the mean of the sampled phi^s over the grain sample points with
-    z <= h."""
+    over the cells wholly below h (z the uniformly spaced cell centres; the
+    interface cell left out, as validation/chute/test_chute.py), and the
+    mean of the sampled phi^s over the grain cells with centres z <= h."""
     z = np.asarray(z, dtype=float)
     u = np.asarray(u, dtype=float)
     phis = np.ma.filled(np.ma.asarray(phis, dtype=float), np.nan)
-    inside = (z <= h) & (z >= 0.0)
+    dz = z[1] - z[0] if z.size > 1 else 0.0
+    inside = (z + 0.5 * dz <= h) & (z >= 0.0)
     zz = np.linspace(0.0, h, 200)
     u_ex = bagnold.velocity(zz, h, zeta)
     p_ex = grayChugunov.phi_s(zz / h, Pe, phibar)
@@ -544,7 +546,8 @@ def figure4(z, u, phis, out, h, Pe, phibar, zeta=ZETA,
     b.legend(fontsize=8, loc="upper right")
     fig.suptitle("Figure 4: steady downslope velocity and small-particle "
                  f"concentration at {where}", fontsize=10)
-    mean = float(np.mean(phis[ok_p])) if ok_p.any() else float("nan")
+    below = (z <= h) & (z >= 0.0) & np.isfinite(phis)
+    mean = float(np.mean(phis[below])) if below.any() else float("nan")
     return {"path": _save(fig, out), "u_l2": u_l2, "phis_l2": p_l2,
             "phis_mean": mean}
 
