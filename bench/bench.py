@@ -434,10 +434,7 @@ def main(argv):
             "solvers": list(generate.SOLVERS),
             "implicit_fvSolution": generate.IMPLICIT,
         },
-        "drift": generate.drift(),
     }
-    for note in results["drift"]:
-        print(f"bench/run: note: {note}", flush=True)
 
     configs = []
     for nx, nz in args.meshes:

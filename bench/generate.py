@@ -51,15 +51,13 @@ FIXED_STEP = {"adjustTimeStep": "no", "maxCo": 0.9, "maxAlphaCo": 0.9,
               "maxDeltaT": 1}
 ADJUSTABLE_STEP = {"adjustTimeStep": "yes", "maxCo": 0.9, "maxAlphaCo": 0.9}
 
-# Templates copied verbatim from tutorials/chute; generation warns when the
-# tutorial has moved on
-VERBATIM = {
-    "common/system/fvSchemes": "tutorials/chute/system/fvSchemes",
-    "common/constant/g": "tutorials/chute/constant/g",
-    "common/constant/turbulenceProperties":
-        "tutorials/chute/constant/turbulenceProperties",
-    "granular/chute/constant/granularProperties":
-        "tutorials/chute/constant/granularProperties",
+# Files taken from tutorials/chute as they are, at generation time (so the
+# benchmark follows the tutorial): {file in the case: for which solvers}
+FROM_TUTORIAL = {
+    "system/fvSchemes": "all",
+    "constant/g": "all",
+    "constant/turbulenceProperties": "all",
+    "constant/granularProperties": "granular chute",
 }
 
 # The chute's box and grain layer (tutorials/chute/system/chuteParameters)
@@ -88,23 +86,30 @@ def foam_scalar(path, entry):
 
 
 def gravity():
-    """g from bench/cases/common/constant/g: (|g|, sin zeta, cos zeta)."""
-    text = foam_value(TEMPLATES / "common/constant/g", "value")
+    """g from tutorials/chute/constant/g: (|g|, sin zeta, cos zeta)."""
+    text = foam_value(REPO / "tutorials/chute/constant/g", "value")
     gx, gy, gz = (float(c) for c in text.strip("()").split())
     mag = math.sqrt(gx * gx + gy * gy + gz * gz)
     return mag, gx / mag, -gz / mag
 
 
+def granular_properties(case):
+    """constant/granularProperties of a case: the tutorial's for the chute,
+    the template's for the drum-like box."""
+    if case == "chute":
+        return REPO / "tutorials/chute/constant/granularProperties"
+    return TEMPLATES / f"granular/{case}/constant/granularProperties"
+
+
 def grain_density():
     """Phi*rhoStar of the granular cases (and rho of stock's grain phases)."""
-    props = TEMPLATES / "granular/chute/constant/granularProperties"
+    props = granular_properties("chute")
     return foam_scalar(props, "Phi") * foam_scalar(props, "rhoStar")
 
 
 def eta_max():
     return max(
-        foam_scalar(TEMPLATES / f"granular/{case}/constant/granularProperties",
-                    "etaMax")
+        foam_scalar(granular_properties(case), "etaMax")
         for case in CASES)
 
 
@@ -124,7 +129,7 @@ class Bagnold:
     and the air profile (5.7) (ERRATA 4) above h."""
 
     def __init__(self):
-        props = TEMPLATES / "granular/chute/constant/granularProperties"
+        props = granular_properties("chute")
         law = "grains.small.BarkerGrayCoeffs."
         assert foam_value(props, "grains.small.frictionLaw") == "BarkerGray"
         mus, mud, mu_inf, i0, i1 = (
@@ -177,14 +182,6 @@ def inlet_profile(nz):
         f"alpha_air_inlet     {scalars([1 - g for g in grains])};\n"
         f"alpha_small_inlet   {scalars([0.5 * g for g in grains])};\n"
         f"alpha_large_inlet   {scalars([0.5 * g for g in grains])};\n")
-
-
-def drift():
-    """Templates that are no longer identical to the tutorial's files."""
-    return [f"bench/cases/{copy} differs from {source}"
-            for copy, source in VERBATIM.items()
-            if (TEMPLATES / copy).read_bytes()
-            != (REPO / source).read_bytes()]
 
 
 def foam_header(obj):
@@ -247,7 +244,12 @@ def prepare(case_dir, case, solver, nx, nz, steps, ranks, interval=None,
                 TEMPLATES / ("stock" if solver == "stock"
                              else f"granular/{case}")]
     for tree in overlays:
-        shutil.copytree(tree, case_dir, dirs_exist_ok=True)
+        if tree.is_dir():
+            shutil.copytree(tree, case_dir, dirs_exist_ok=True)
+    for name, who in FROM_TUTORIAL.items():
+        if who == "all" or (solver != "stock" and case == "chute"):
+            (case_dir / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(REPO / "tutorials/chute" / name, case_dir / name)
     if solver == "granular-implicit":
         set_implicit(case_dir)
 

@@ -163,8 +163,6 @@ def warnings(results):
             f"{worst['other_load']:.2f} cores, {worst['config']} on "
             f"{worst['ranks']} rank(s)); the MPI runs suffer most. "
             "Per-run loads: `other_load` in bench/results.json.")
-    for note in results["drift"]:
-        lines.append(f"- {note}: the benchmark runs its own copy.")
     return lines
 
 
