@@ -66,7 +66,7 @@ int main(int argc, char *argv[])
     // fvSolution PIMPLE { viscousStress explicit | implicit; }: does the
     // viscous part of (4.11) limit the time step?
     const bool viscousLimit =
-        granularMixture::readViscousStress(pimple.dict())
+        granularMixture::readViscousStress(pimple)
      == granularMixture::viscousStress::explicitStress;
 
     turbulence->validate();

@@ -672,11 +672,11 @@ Foam::granularMixture::cfl
         diff += D.primitiveField()*G_;
     }
 
-    const scalarField total
-    (
-        conv + (viscousLimit ? visc : scalarField(visc.size(), Zero))
-      + segregationRate_ + diff
-    );
+    scalarField total(conv + segregationRate_ + diff);
+    if (viscousLimit)
+    {
+        total += visc;
+    }
     const scalar maxTotal = gMax(total);
 
     cflParts parts;
@@ -711,41 +711,29 @@ Foam::granularMixture::cfl
 
 
 Foam::granularMixture::viscousStress
-Foam::granularMixture::readViscousStress(const dictionary& pimpleDict)
+Foam::granularMixture::readViscousStress(const pimpleControl& pimple)
 {
+    const dictionary& dict = pimple.dict();
     const viscousStress v = viscousStressNames.getOrDefault
     (
-        "viscousStress", pimpleDict, viscousStress::explicitStress
+        "viscousStress", dict, viscousStress::explicitStress
     );
-    if
-    (
-        v == viscousStress::implicitStress
-     && !pimpleDict.getOrDefault<bool>("momentumPredictor", true)
-    )
+    if (v == viscousStress::implicitStress && !pimple.momentumPredictor())
     {
-        FatalIOErrorInFunction(pimpleDict)
+        FatalIOErrorInFunction(dict)
             << "Invalid value of keyword 'viscousStress' in dictionary "
-            << pimpleDict.name() << ": viscousStress = implicit needs"
+            << dict.name() << ": viscousStress = implicit needs"
             << " momentumPredictor yes (without the predictor the stress"
             << " acts explicitly through H(U))" << nl
             << exit(FatalIOError);
     }
 
-    // The implicit viscous coefficients dominate the diagonal of the
-    // momentum matrix, and PISO neglects H of the velocity correction: the
-    // pressure converges slowly over the correctors.  Measured: in the
-    // periodic layer at 80 times the viscous-CFL step, with 2 correctors
-    // the grains' pressure jumped by 140 Pa between steps and u drifted 2 %
-    // from Bagnold (3 correctors at 80 times and 4 at 270 times gave the
-    // explicit run's profile); in the chute at 32 cells over L_z and 15
-    // times the step, with 4 correctors the air ahead of the front ran at
-    // 0.5 m/s under -14 Pa, with 10 it flowed as in the explicit run.
-    const label nCorr = pimpleDict.getOrDefault<label>("nCorrectors", 1);
-    if (v == viscousStress::implicitStress && nCorr < 4)
+    // Too few PISO correctors: see the class description (Usage)
+    if (v == viscousStress::implicitStress && pimple.nCorrPISO() < 4)
     {
         WarningInFunction
-            << "viscousStress implicit with nCorrectors " << nCorr
-            << " in " << pimpleDict.name() << ": the pressure may not"
+            << "viscousStress implicit with nCorrectors " << pimple.nCorrPISO()
+            << " in " << dict.name() << ": the pressure may not"
             << " converge within a step at large Delta t; the chute"
             << " tutorial uses nCorrectors 10" << endl;
     }
