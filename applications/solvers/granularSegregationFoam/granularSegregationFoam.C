@@ -137,6 +137,24 @@ int main(int argc, char *argv[])
             {
                 #include "pEqn.H"
             }
+
+            // Closed domains: the reference cell turns with a rotating
+            // mesh and may end in the grains, so p is levelled on the air
+            // instead, p - rho^a g.x = pRefValue on average over the air
+            scalar airLevel = 0;
+            if
+            (
+                p_rgh.needReference()
+             && mixture.airPressureLevel(p, airLevel)
+            )
+            {
+                const dimensionedScalar shift
+                (
+                    "shift", p.dimensions(), pRefValue - airLevel
+                );
+                p += shift;
+                p_rgh += shift;
+            }
         }
 
         runTime.write();

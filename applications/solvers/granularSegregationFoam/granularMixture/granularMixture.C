@@ -747,6 +747,34 @@ Foam::granularMixture::readViscousStress(const pimpleControl& pimple)
 }
 
 
+bool Foam::granularMixture::airPressureLevel
+(
+    const volScalarField& p,
+    scalar& level
+) const
+{
+    // The mean of p - rho^a g.x over the pure-air cells
+    const scalarField V
+    (
+        mesh_.V().field()*pos0(alphas_[0].primitiveField() - 0.99)
+    );
+    const scalar volAir = gSum(V);
+    if (volAir <= 0)
+    {
+        return false;
+    }
+    level = gSum
+    (
+        V
+       *(
+           p.primitiveField()
+         - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
+        )
+    )/volAir;
+    return true;
+}
+
+
 void Foam::granularMixture::correctRheology
 (
     const volScalarField& p,
@@ -764,16 +792,14 @@ void Foam::granularMixture::correctRheology
     }
     else
     {
-        const volScalarField pAir(p - rhoAir_*(gHydrostatic() & mesh_.C()));
-        const scalarField pureAir(pos0(alphas_[0].primitiveField() - 0.99));
-        const scalarField V(mesh_.V().field()*pureAir);
-        const scalar volAir = gSum(V);
-        const scalar c =
-            volAir > 0 ? gSum(V*pAir.primitiveField())/volAir : 0;
+        scalar c = 0;
+        airPressureLevel(p, c);
 
         pGranular_.primitiveFieldRef() = max
         (
-            pAir.primitiveField() - c,
+            p.primitiveField()
+          - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
+          - c,
             rheology_.pMin().value()
         );
         pGranular_.correctBoundaryConditions();

@@ -1,0 +1,256 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+
+Application
+    setGranularFields
+
+Group
+    grpPreProcessingUtilities
+
+Description
+    Sets the initial state of a granular case: grains of a given composition
+    below a plane, air above, and a velocity that is either uniform or the
+    solid-body rotation of the case's mesh, as in the square drum (7.1),
+    (7.2) of Barker et al. (2021):
+
+        (phi^a, phi^nu) = (0, c^nu)   below the plane
+                        = (1, 0)      above it
+        u_0 = Omega a x (x - x_0)     (rotation of constant/dynamicMeshDict)
+
+    A cell cut by the plane gets the exact fraction of its volume below it
+    (the cell is decomposed into tetrahedra that are sliced by the plane),
+    so the grain volume is the volume below the plane whatever the mesh.
+
+    The fields alpha.<phase> of every phase of constant/granularProperties
+    and U must exist in the start time (from 0.orig): only their internal
+    values are set, their boundary conditions are kept, as setFields does.
+
+Usage
+    system/setGranularFieldsDict:
+    \verbatim
+    grains
+    {
+        point       (0 0.04 0);     // a point of the plane
+        normal      (0 1 0);        // from the grains into the air
+        fractions   { small 0.5; large 0.5; }   // of the grains, sum 1
+    }
+    velocity        rotation;       // (7.2); or a vector, e.g. (0 0 0)
+    \endverbatim
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "meshRotation.H"
+#include "granularInput.H"
+#include "plane.H"
+#include "tetrahedron.H"
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+namespace
+{
+    using namespace Foam;
+
+    //- Fraction of each cell's volume on the side of the plane opposite to
+    //  its normal, exact for polyhedral cells
+    scalarField fractionBelow(const fvMesh& mesh, const plane& pl)
+    {
+        const pointField& pts = mesh.points();
+        const pointField& fc = mesh.faceCentres();
+        const pointField& cc = mesh.cellCentres();
+        const faceList& faces = mesh.faces();
+
+        scalarField below(mesh.nCells());
+        forAll(below, celli)
+        {
+            tetPointRef::sumVolOp aboveOp;
+            tetPointRef::sumVolOp belowOp;
+            for (const label facei : mesh.cells()[celli])
+            {
+                const face& f = faces[facei];
+                forAll(f, fp)
+                {
+                    const tetPointRef tet
+                    (
+                        cc[celli],
+                        fc[facei],
+                        pts[f[fp]],
+                        pts[f.nextLabel(fp)]
+                    );
+                    tet.sliceWithPlane(pl, aboveOp, belowOp);
+                }
+            }
+            below[celli] = belowOp.vol_/(aboveOp.vol_ + belowOp.vol_);
+        }
+        return below;
+    }
+}
+
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Set the initial grains, air and velocity of a granular case from"
+        " system/setGranularFieldsDict (the square drum's (7.1)-(7.2))."
+    );
+
+    #include "addRegionOption.H"
+    #include "setRootCase.H"
+    #include "createTime.H"
+    #include "createNamedMesh.H"
+
+    const IOdictionary setDict
+    (
+        IOobject
+        (
+            "setGranularFieldsDict",
+            runTime.system(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE
+        )
+    );
+
+    const IOdictionary properties
+    (
+        IOobject
+        (
+            "granularProperties",
+            runTime.constant(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    const word airName
+    (
+        properties.subDict("air").getOrDefault<word>("name", "air")
+    );
+    const wordList grainNames(properties.subDict("grains").toc());
+
+    // The plane and the composition of the grains below it
+    const dictionary& grainsDict = setDict.subDict("grains");
+    const point p0(grainsDict.get<point>("point"));
+    const vector n(grainsDict.get<vector>("normal"));
+    if (mag(n) < SMALL)
+    {
+        FatalIOErrorInFunction(grainsDict)
+            << "normal = " << n << " in " << grainsDict.name()
+            << ": the normal of the plane must not be zero" << nl
+            << exit(FatalIOError);
+    }
+
+    const dictionary& fracDict = grainsDict.subDict("fractions");
+    for (const word& key : fracDict.toc())
+    {
+        if (!grainNames.found(key))
+        {
+            FatalIOErrorInFunction(fracDict)
+                << "Phase " << key << " in " << fracDict.name()
+                << " is not a grain phase of " << properties.name()
+                << "; the grain phases are " << grainNames << nl
+                << exit(FatalIOError);
+        }
+    }
+    scalarList c(grainNames.size());
+    scalar sumC = 0;
+    forAll(grainNames, i)
+    {
+        c[i] = granularInput::readNonNegative
+        (
+            fracDict, grainNames[i]
+        ).value();
+        if (c[i] > 1)
+        {
+            granularInput::invalid
+            (
+                fracDict, grainNames[i], c[i], "a fraction lies in [0, 1]"
+            );
+        }
+        sumC += c[i];
+    }
+    if (mag(sumC - 1) > 1e-12)
+    {
+        FatalIOErrorInFunction(fracDict)
+            << "The fractions in " << fracDict.name() << " sum to "
+            << sumC << ", not 1" << nl << exit(FatalIOError);
+    }
+
+    const scalarField below(fractionBelow(mesh, plane(p0, n)));
+
+    // Phase fractions: air above, the grains' composition below
+    const auto setAlpha = [&](const word& phase, const scalarField& value)
+    {
+        volScalarField alpha
+        (
+            IOobject
+            (
+                IOobject::groupName("alpha", phase),
+                runTime.timeName(),
+                mesh,
+                IOobject::MUST_READ,
+                IOobject::NO_WRITE
+            ),
+            mesh
+        );
+        alpha.primitiveFieldRef() = value;
+        alpha.correctBoundaryConditions();
+        alpha.write();
+        Info<< "    " << alpha.name() << ": volume "
+            << gSum(mesh.V().field()*value) << " m^3" << endl;
+    };
+
+    Info<< "Grains below the plane through " << p0 << " with normal "
+        << n/mag(n) << nl;
+    setAlpha(airName, 1 - below);
+    forAll(grainNames, i)
+    {
+        setAlpha(grainNames[i], c[i]*below);
+    }
+
+    // Velocity: uniform, or the mesh's solid-body rotation (7.2)
+    volVectorField U
+    (
+        IOobject
+        (
+            "U",
+            runTime.timeName(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE
+        ),
+        mesh
+    );
+    vector u0(Zero);
+    const word velocity
+    (
+        granularInput::readVectorOrWord(setDict, "velocity", {"rotation"}, u0)
+    );
+    if (velocity == "rotation")
+    {
+        const meshRotation rotation(runTime);
+        U.primitiveFieldRef() =
+            rotation.velocity(mesh.C().primitiveField(), runTime.value());
+        Info<< "U: the rotation " << rotation.omega(runTime.value())
+            << " rad/s about " << rotation.axis() << " through "
+            << rotation.origin() << endl;
+    }
+    else
+    {
+        U.primitiveFieldRef() = u0;
+        Info<< "U: uniform " << u0 << endl;
+    }
+    U.correctBoundaryConditions();
+    U.write();
+
+    Info<< "\nEnd\n" << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //
