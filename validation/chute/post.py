@@ -160,7 +160,8 @@ def _place(values, iz, ix, nz, nx):
 
 
 def time_names(case):
-    """Sorted names of the time directories of case holding alpha.air."""
+    """Sorted names of the time directories of case holding alpha.air
+    (plain or .gz)."""
     case = Path(case)
     out = []
     for d in case.iterdir():
@@ -168,7 +169,8 @@ def time_names(case):
             float(d.name)
         except ValueError:
             continue
-        if d.is_dir() and (d / "alpha.air").is_file():
+        if d.is_dir() and ((d / "alpha.air").is_file()
+                           or (d / "alpha.air.gz").is_file()):
             out.append(d.name)
     return sorted(out, key=float)
 

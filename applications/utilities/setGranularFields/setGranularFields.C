@@ -45,7 +45,6 @@ Usage
 #include "meshRotation.H"
 #include "granularInput.H"
 #include "plane.H"
-#include "tetrahedron.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -53,8 +52,82 @@ namespace
 {
     using namespace Foam;
 
+    //- |volume| of the tetrahedron (a, b, c, d)
+    scalar tetVolume(const point& a, const point& b, const point& c, const point& d)
+    {
+        return mag((b - a) & ((c - a) ^ (d - a)))/6;
+    }
+
+    //- Volume of the tetrahedron p on the side d < 0 of a plane, d the
+    //  signed distances of its vertices (points on the plane, d = 0, are
+    //  not below, so no division by zero)
+    scalar volumeBelow(const FixedList<point, 4>& p, const FixedList<scalar, 4>& d)
+    {
+        // Where the edge (i, j) crosses the plane, d[i] < 0 <= d[j]
+        const auto cut = [&](label i, label j)
+        {
+            return p[i] + d[i]/(d[i] - d[j])*(p[j] - p[i]);
+        };
+
+        labelList below;
+        labelList above;
+        forAll(d, i)
+        {
+            (d[i] < 0 ? below : above).append(i);
+        }
+
+        const scalar V = tetVolume(p[0], p[1], p[2], p[3]);
+        switch (below.size())
+        {
+            case 0:
+                return 0;
+            case 4:
+                return V;
+            case 1:
+            {
+                const label i = below[0];
+                return tetVolume
+                (
+                    p[i], cut(i, above[0]), cut(i, above[1]), cut(i, above[2])
+                );
+            }
+            case 3:
+            {
+                // V minus the corner above; d = 0 there leaves no corner
+                const label k = above[0];
+                if (d[k] <= 0)
+                {
+                    return V;
+                }
+                const auto cutAbove = [&](label j)
+                {
+                    return p[k] + d[k]/(d[k] - d[j])*(p[j] - p[k]);
+                };
+                return V - tetVolume
+                (
+                    p[k], cutAbove(below[0]), cutAbove(below[1]),
+                    cutAbove(below[2])
+                );
+            }
+            default:
+            {
+                // A wedge: the triangles (a, ac, ad) and (b, bc, bd),
+                // split into three tetrahedra
+                const label a = below[0], b = below[1];
+                const label c = above[0], e = above[1];
+                const point A0(p[a]), A1(cut(a, c)), A2(cut(a, e));
+                const point B0(p[b]), B1(cut(b, c)), B2(cut(b, e));
+                return
+                    tetVolume(A0, A1, A2, B2)
+                  + tetVolume(A0, A1, B1, B2)
+                  + tetVolume(A0, B0, B1, B2);
+            }
+        }
+    }
+
     //- Fraction of each cell's volume on the side of the plane opposite to
-    //  its normal, exact for polyhedral cells
+    //  its normal, exact for polyhedral cells (decomposed into tetrahedra
+    //  about the cell centre and the face centres)
     scalarField fractionBelow(const fvMesh& mesh, const plane& pl)
     {
         const pointField& pts = mesh.points();
@@ -65,24 +138,27 @@ namespace
         scalarField below(mesh.nCells());
         forAll(below, celli)
         {
-            tetPointRef::sumVolOp aboveOp;
-            tetPointRef::sumVolOp belowOp;
+            scalar vBelow = 0;
+            scalar vAll = 0;
             for (const label facei : mesh.cells()[celli])
             {
                 const face& f = faces[facei];
                 forAll(f, fp)
                 {
-                    const tetPointRef tet
-                    (
-                        cc[celli],
-                        fc[facei],
-                        pts[f[fp]],
-                        pts[f.nextLabel(fp)]
-                    );
-                    tet.sliceWithPlane(pl, aboveOp, belowOp);
+                    const FixedList<point, 4> tet
+                    ({
+                        cc[celli], fc[facei], pts[f[fp]], pts[f.nextLabel(fp)]
+                    });
+                    FixedList<scalar, 4> d;
+                    forAll(tet, i)
+                    {
+                        d[i] = pl.signedDistance(tet[i]);
+                    }
+                    vBelow += volumeBelow(tet, d);
+                    vAll += tetVolume(tet[0], tet[1], tet[2], tet[3]);
                 }
             }
-            below[celli] = belowOp.vol_/(aboveOp.vol_ + belowOp.vol_);
+            below[celli] = vBelow/vAll;
         }
         return below;
     }

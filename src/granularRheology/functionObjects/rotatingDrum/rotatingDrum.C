@@ -26,6 +26,49 @@ namespace functionObjects
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
+void Foam::functionObjects::rotatingDrum::seed()
+{
+    const scalar tol = 1e-6*period_;
+    for (const instant& inst : time_.times())
+    {
+        if
+        (
+            inst.value() > firstTime_ - period_ - tol
+         && inst.value() < firstTime_ - tol
+        )
+        {
+            IOobject io
+            (
+                fieldName_,
+                inst.name(),
+                mesh_,
+                IOobject::MUST_READ,
+                IOobject::NO_WRITE,
+                false
+            );
+            if (io.typeHeaderOk<volScalarField>(true))
+            {
+                const volScalarField alpha(io, mesh_);
+                times_.append(inst.value());
+                samples_.append(alpha.primitiveField());
+            }
+        }
+    }
+
+    if (foundObject<volScalarField>(fieldName_))
+    {
+        times_.append(firstTime_);
+        samples_.append
+        (
+            lookupObject<volScalarField>(fieldName_).primitiveField()
+        );
+    }
+
+    Log << type() << " " << name() << ": " << times_.size()
+        << " sample(s) of " << fieldName_ << " to start J of (7.6)" << endl;
+}
+
+
 Foam::scalar Foam::functionObjects::rotatingDrum::changeOverPeriod
 (
     const scalarField& alpha
@@ -44,6 +87,7 @@ Foam::scalar Foam::functionObjects::rotatingDrum::changeOverPeriod
         }
     }
 
+    // The record is complete from the start time on
     if (t0 > firstTime_ + tol)
     {
         FatalErrorInFunction
@@ -175,6 +219,7 @@ Foam::functionObjects::rotatingDrum::rotatingDrum
     samples_()
 {
     read(dict);
+    seed();
     writeFileHeader(file());
 }
 
@@ -256,20 +301,34 @@ bool Foam::functionObjects::rotatingDrum::write()
     times_.append(t);
     samples_.append(alpha);
 
-    const auto value = [](const scalar x)
+    // GREAT marks a value that does not exist yet: written as nan
+    const auto put = [](Ostream& os, const scalar x) -> Ostream&
     {
-        return x < 0.1*GREAT ? Foam::name(x) : word("nan");
+        if (x < 0.1*GREAT)
+        {
+            os << x;
+        }
+        else
+        {
+            os << "nan";
+        }
+        return os;
     };
 
-    Log << type() << " " << name() << " write: J = " << value(J)
-        << ", surface angle = " << value(angle) << " deg, peak speed = "
-        << speed << " m/s" << endl;
+    if (log)
+    {
+        Info<< type() << " " << name() << " write: J = ";
+        put(Info, J) << ", surface angle = ";
+        put(Info, angle) << " deg, peak speed = " << speed << " m/s" << endl;
+    }
 
     if (Pstream::master())
     {
-        writeCurrentTime(file());
-        file()
-            << tab << value(J) << tab << value(angle) << tab << speed << endl;
+        OFstream& os = file();
+        writeCurrentTime(os);
+        os << tab;
+        put(os, J) << tab;
+        put(os, angle) << tab << speed << endl;
     }
 
     return true;

@@ -1,0 +1,375 @@
+"""Post-processing and figures of the square rotating drum
+(tutorials/squareDrum), section 7 of Barker et al. (2021): figures 10, 11
+and 13, the small-rich lobes and their period.
+
+Reads what the case wrote: the rotatingDrum monitor (J(t) of (7.6), the
+free-surface angle, the peak speed relative to the drum), the phase volumes
+and bounds, the `rings` sets (phi^s on circles about the axis, sampled by
+OpenFOAM) and the ascii fields and moved points of the time directories.
+
+    /usr/bin/python3 validation/squareDrum/post.py CASE [CASE ...] [--out DIR]
+
+writes figure13.png (J(t) of every case given), and for the finest case
+figure10.png, figure11.png, lobes.png and drum.json (the numbers).
+"""
+import argparse
+import json
+import math
+import re
+import sys
+from pathlib import Path
+
+if __name__ == "__main__" and __package__ in (None, ""):
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+import numpy as np  # noqa: E402
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from scipy.signal import find_peaks  # noqa: E402
+
+from cases import foam  # noqa: E402
+from chute.post import _read_text, read_field, time_names  # noqa: E402
+
+DPI = 150
+PERIOD = 10.0                   # s, one revolution at Omega = -pi/5
+I1 = 0.01886                    # table 4: below it the law creeps
+LOBE_RING = "r0.6"              # the circle on which lobes are counted
+LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
+FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
+
+
+# --------------------------------------------------------------------------
+# Reading
+# --------------------------------------------------------------------------
+
+def parameters(case):
+    """Numeric entries of case/system/drumParameters (N, L, etaMax, ...)."""
+    text = _read_text(Path(case) / "system" / "drumParameters")
+    text = re.sub(r"//.*", "", text)
+    return {k: float(v) for k, v in re.findall(
+        r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+
+
+def _table(path):
+    """Rows of a function object's .dat file (comments '#' skipped; 'nan'
+    read as NaN): array (rows, columns)."""
+    rows = [line.split() for line in _read_text(path).splitlines()
+            if line.strip() and not line.startswith("#")]
+    assert rows, f"{path} holds no data"
+    return np.array(rows, dtype=float)
+
+
+def function_table(case, function, name):
+    """Rows of case/postProcessing/function/<start>/name over all start
+    times (restarts): each start's rows up to the next start."""
+    base = Path(case) / "postProcessing" / function
+    assert base.is_dir(), f"no {base}"
+    starts = sorted((d for d in base.iterdir()
+                     if d.is_dir() and (d / name).is_file()),
+                    key=lambda d: float(d.name))
+    assert starts, f"no {name} in {base}"
+    parts = []
+    for k, d in enumerate(starts):
+        a = _table(d / name)
+        if k + 1 < len(starts):
+            a = a[a[:, 0] < float(starts[k + 1].name) + 1e-9]
+        parts.append(a)
+    return np.concatenate(parts)
+
+
+def monitor(case):
+    """The rotatingDrum monitor: {'t', 'J', 'angle', 'peak'} arrays."""
+    a = function_table(case, "drum", "rotatingDrum.dat")
+    return {"t": a[:, 0], "J": a[:, 1], "angle": a[:, 2], "peak": a[:, 3]}
+
+
+def volumes(case):
+    """The phase volumes: {'t', 'air', 'small', 'large'} arrays."""
+    a = function_table(case, "volumes", "volFieldValue.dat")
+    return {"t": a[:, 0], "air": a[:, 1], "small": a[:, 2],
+            "large": a[:, 3]}
+
+
+def bounds(case):
+    """Smallest minimum and largest maximum of all phase fractions."""
+    a = function_table(case, "bounds", "fieldMinMax.dat")
+    return float(a[:, 1::2].min()), float(a[:, 2::2].max())
+
+
+def points(case, time_name):
+    """The moved mesh points of a time (n, 3)."""
+    text = _read_text(Path(case) / str(time_name) / "polyMesh" / "points")
+    body = text[text.index("FoamFile"):]
+    body = body[body.index("}") + 1:]
+    m = re.search(r"(\d+)\s*\(", body)
+    assert m, f"{case}/{time_name}: cannot parse points"
+    n = int(m.group(1))
+    values = np.array(body[m.end():].replace("(", " ").replace(")", " ")
+                      .split()[:3 * n], dtype=float)
+    return values.reshape(n, 3)
+
+
+def grid(case, time_name, names):
+    """Fields of the N x N block at a time, in the lab frame: (X, Y)
+    corners (N+1, N+1) of the moved mesh and {name: (N, N)}; vectors give
+    name+'x' and name+'y'.  blockMesh numbers cells and points x first."""
+    N = int(parameters(case)["N"])
+    p = points(case, time_name)
+    assert p.shape[0] == 2 * (N + 1) ** 2, (
+        f"{case}: {p.shape[0]} points, not a {N} x {N} x 1 block")
+    X = p[:(N + 1) ** 2, 0].reshape(N + 1, N + 1)
+    Y = p[:(N + 1) ** 2, 1].reshape(N + 1, N + 1)
+    out = {}
+    for name in names:
+        f = read_field(case, time_name, name)
+        assert f.shape[0] == N * N, f"{name}: {f.shape[0]} values"
+        if f.ndim == 1:
+            out[name] = f.reshape(N, N)
+        else:
+            out[name + "x"] = f[:, 0].reshape(N, N)
+            out[name + "y"] = f[:, 1].reshape(N, N)
+    return X, Y, out
+
+
+def sample_rings(case):
+    """Sample the circles of system/ringsDict on every written time (by
+    OpenFOAM's postProcess, on the moved meshes), once."""
+    if not (Path(case) / "postProcessing" / "rings").is_dir():
+        foam(case, "postProcess", "-dict", "system/ringsDict", "-fields",
+             "(alpha.small alpha.air)")
+
+
+def ring(case, time_name, name=LOBE_RING):
+    """phi^s and phi^a sampled on a circle (the `rings` sets): the lab
+    angle [rad, 0..2pi), phi^s, phi^a."""
+    folder = Path(case) / "postProcessing" / "rings" / str(time_name)
+    files = sorted(folder.glob(f"{name}_*.xy"))
+    assert files, f"no ring {name} in {folder}"
+    a = np.loadtxt(files[0])
+    header = files[0].name[len(name) + 1:-3].split("_")
+    assert sorted(header) == ["alpha.air", "alpha.small"], header
+    assert a.shape[1] == 5, f"{files[0]}: {a.shape[1]} columns"
+    theta = np.mod(np.arctan2(a[:, 1], a[:, 0]), 2 * math.pi)
+    order = np.argsort(theta)
+    col = {h: 3 + k for k, h in enumerate(header)}
+    return (theta[order], a[order, col["alpha.small"]],
+            a[order, col["alpha.air"]])
+
+
+def _time_name(case, t):
+    names = [n for n in time_names(case) if abs(float(n) - t) < 1e-6]
+    assert names, f"{case}: no time directory at t = {t}"
+    return names[0]
+
+
+# --------------------------------------------------------------------------
+# Measurements
+# --------------------------------------------------------------------------
+
+def lobes(case, time_name):
+    """Small-rich lobes crossing the LOBE_RING circle at a time: their lab
+    angles [rad].  Only the grains (phi^a < 1/2) count; a lobe is a peak
+    of phi^s of prominence LOBE_PROMINENCE, on the periodic circle."""
+    theta, phis, phia = ring(case, time_name)
+    grains = phia < 0.5
+    f = np.where(grains, phis, 0.0)
+    n = f.size
+    ext = np.concatenate((f, f, f))
+    peaks, _ = find_peaks(ext, prominence=LOBE_PROMINENCE)
+    peaks = peaks[(peaks >= n) & (peaks < 2 * n)] - n
+    return theta[peaks[grains[peaks]]]
+
+
+def lobe_period(case, names):
+    """Period [s] of the lobes' rotation in the lab frame: the angular
+    shift that best maps the grains' phi^s on the circle at one write time
+    onto the next (least squares over 1-degree shifts), averaged."""
+    rates = []
+    for a, b in zip(names[:-1], names[1:]):
+        th, f0, a0 = ring(case, a)
+        _, f1, a1 = ring(case, b)
+        dt = float(b) - float(a)
+        n = th.size
+        step = 2 * math.pi / n
+        best = None
+        for s in range(-n // 2, n // 2):
+            g = np.roll(f0, s)
+            mask = (np.roll(a0, s) < 0.5) & (a1 < 0.5)
+            if mask.sum() < n // 4:
+                continue
+            err = np.mean((g[mask] - f1[mask]) ** 2)
+            if best is None or err < best[0]:
+                best = (err, s)
+        rates.append(best[1] * step / dt)
+    rate = float(np.mean(rates))
+    return 2 * math.pi / abs(rate), rate
+
+
+def summary(case):
+    """The numbers of a case: J at each revolution, conservation, bounds,
+    angle and speed statistics, lobes and their period."""
+    par = parameters(case)
+    m = monitor(case)
+    v = volumes(case)
+    out = {"N": int(par["N"]), "etaMax": par["etaMax"],
+           "endTime": float(m["t"][-1])}
+    out["J_revolution"] = {
+        f"{k * PERIOD:g}": float(np.interp(k * PERIOD, m["t"], m["J"]))
+        for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
+    for ph in ("air", "small", "large"):
+        out[f"volume_drift_{ph}"] = float(
+            np.max(np.abs(v[ph] / v[ph][0] - 1)))
+    out["alpha_min"], out["alpha_max"] = bounds(case)
+    late = m["t"] >= 2 * PERIOD
+    out["surface_angle_mean_deg"] = float(np.nanmean(m["angle"][late]))
+    out["surface_angle_range_deg"] = [float(np.nanmin(m["angle"][late])),
+                                      float(np.nanmax(m["angle"][late]))]
+    out["peak_speed_mean"] = float(np.mean(m["peak"][late]))
+    out["peak_speed_max"] = float(np.max(m["peak"][late]))
+    sample_rings(case)
+    names = [n for n in time_names(case)
+             if float(n) >= m["t"][-1] - PERIOD - 1e-9]
+    counts = [len(lobes(case, n)) for n in names]
+    out["lobes_last_revolution"] = counts
+    out["lobes_median"] = float(np.median(counts))
+    out["lobe_period_s"], out["lobe_rate_rad_s"] = lobe_period(case, names)
+    return out
+
+
+# --------------------------------------------------------------------------
+# Figures
+# --------------------------------------------------------------------------
+
+def _save(fig, out):
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    assert out.is_file() and out.stat().st_size > 0, out
+
+
+def figure13(cases, out):
+    """J(t) of (7.6) for every case (figure 13)."""
+    fig, ax = plt.subplots(figsize=(6.5, 3.5))
+    for case in cases:
+        m = monitor(case)
+        ax.plot(m["t"], m["J"], label=f"N = {int(parameters(case)['N'])}")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(r"$\mathcal{J}(t)$  (7.6)")
+    ax.set_xlim(0, None)
+    ax.set_ylim(0, None)
+    ax.legend()
+    ax.set_title("Change of the small-grain fraction over one revolution")
+    _save(fig, out)
+
+
+def _drum_axes(ax, X, Y):
+    ax.set_aspect("equal")
+    ax.set_xlim(-0.145, 0.145)
+    ax.set_ylim(-0.145, 0.145)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    edge = np.concatenate((np.c_[X[0, :], Y[0, :]], np.c_[X[:, -1], Y[:, -1]],
+                           np.c_[X[-1, ::-1], Y[-1, ::-1]],
+                           np.c_[X[::-1, 0], Y[::-1, 0]]))
+    ax.plot(edge[:, 0], edge[:, 1], "k-", lw=0.8)
+
+
+def figure11(case, out):
+    """phi^s at t = 10 s and every 0.625 s from 72.5 to 78.75 s (figure 11),
+    in the lab frame, the air blank."""
+    times = [PERIOD] + list(np.arange(FIG11_FIRST, FIG11_LAST + 1e-9, 0.625))
+    fig, axes = plt.subplots(3, 4, figsize=(10, 7.8))
+    for ax, t, letter in zip(axes.flat, times, "abcdefghijkl"):
+        name = _time_name(case, t)
+        X, Y, f = grid(case, name, ["alpha.small", "alpha.large", "alpha.air"])
+        grains = f["alpha.small"] + f["alpha.large"]
+        phis = np.where(f["alpha.air"] < 0.5,
+                        f["alpha.small"] / np.maximum(grains, 1e-12), np.nan)
+        pc = ax.pcolormesh(X, Y, phis, cmap="viridis", vmin=0, vmax=1,
+                           shading="flat")
+        _drum_axes(ax, X, Y)
+        ax.set_title(f"({letter}) t = {t:g} s", fontsize=9)
+    fig.colorbar(pc, ax=axes, shrink=0.6, label=r"$\varphi^s$")
+    _save(fig, out)
+
+
+def figure10(case, out, times=(78.75, 80.0)):
+    """|u - u_rot|, p and log10 I at two times (figure 10); on log10 I the
+    creep boundary I = I_1 (solid) and the edge of the region where the
+    viscosity cap (4.12) is active (dashed)."""
+    par = parameters(case)
+    omega = -math.pi / 5
+    fig, axes = plt.subplots(3, len(times), figsize=(4.2 * len(times), 11))
+    for j, t in enumerate(times):
+        name = _time_name(case, t)
+        X, Y, f = grid(case, name, ["U", "p", "I", "etaGranular",
+                                    "alpha.air"])
+        xc = 0.25 * (X[:-1, :-1] + X[1:, :-1] + X[:-1, 1:] + X[1:, 1:])
+        yc = 0.25 * (Y[:-1, :-1] + Y[1:, :-1] + Y[:-1, 1:] + Y[1:, 1:])
+        air = f["alpha.air"] >= 0.5
+        ux = f["Ux"] + omega * yc           # u - Omega k x r (7.3)
+        uy = f["Uy"] - omega * xc
+        speed = np.where(air, np.nan, np.hypot(ux, uy))
+        p = np.where(air, np.nan, f["p"])
+        logI = np.where(air, np.nan, np.log10(np.maximum(f["I"], 1e-12)))
+        capped = np.where(air, 0.0, (f["etaGranular"]
+                                     >= (1 - 1e-6) * par["etaMax"]) * 1.0)
+        for i, (v, label, cmap) in enumerate((
+                (speed, r"$|\hat{\mathbf{u}}|$ [m/s]", "magma"),
+                (p, "p [Pa]", "viridis"),
+                (logI, r"$\log_{10} I$", "coolwarm"))):
+            ax = axes[i, j]
+            pc = ax.pcolormesh(X, Y, v, cmap=cmap, shading="flat")
+            if i == 2:
+                ax.contour(xc, yc, np.where(air, np.nan, f["I"]), [I1],
+                           colors="k", linewidths=0.8)
+                ax.contour(xc, yc, capped, [0.5], colors="k",
+                           linewidths=0.8, linestyles="--")
+            _drum_axes(ax, X, Y)
+            fig.colorbar(pc, ax=ax, shrink=0.8, label=label)
+            ax.set_title(f"t = {t:g} s", fontsize=9)
+    _save(fig, out)
+
+
+def figure_lobes(case, out):
+    """phi^s on the circle r = 0.6 L against the lab angle and time (the
+    lobes are the bright stripes; their slope is their rotation)."""
+    names = [n for n in time_names(case) if float(n) > 0]
+    rows = []
+    for n in names:
+        th, phis, phia = ring(case, n)
+        rows.append(np.where(phia < 0.5, phis, np.nan))
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    pc = ax.pcolormesh(np.degrees(th), [float(n) for n in names],
+                       np.array(rows), cmap="viridis", vmin=0, vmax=1,
+                       shading="nearest")
+    fig.colorbar(pc, ax=ax, label=r"$\varphi^s$ on r = 0.6 L")
+    ax.set_xlabel("lab angle [deg]")
+    ax.set_ylabel("t [s]")
+    _save(fig, out)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("cases", nargs="+", type=Path)
+    parser.add_argument("--out", type=Path, default=None)
+    args = parser.parse_args(argv)
+    cases = sorted(args.cases, key=lambda c: parameters(c)["N"])
+    out = args.out or cases[-1] / "figures"
+    figure13(cases, out / "figure13.png")
+    numbers = {}
+    for case in cases:
+        s = summary(case)
+        numbers[f"N{s['N']}"] = s
+        if s["endTime"] >= 80 - 1e-6:
+            figure11(case, out / f"figure11_N{s['N']}.png")
+            figure10(case, out / f"figure10_N{s['N']}.png")
+        figure_lobes(case, out / f"lobes_N{s['N']}.png")
+    (out / "drum.json").write_text(json.dumps(numbers, indent=2))
+    print(json.dumps(numbers, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,137 @@
+"""Smoke tier of the square drum (tutorials/squareDrum): a coarse drum for
+a tenth of a revolution, serial and on 2 ranks.  The initial state (7.1)-
+(7.2) of setGranularFields, the conservation of every phase's volume, the
+bounds of the phase fractions, the pressure level of the closed drum, and
+J of (7.6) recomputed from the written fields.
+"""
+import math
+import re
+
+import numpy as np
+import pytest
+
+from cases import foam, fresh_case
+from chute.post import read_field, cell_centres
+from squareDrum import post
+
+pytestmark = pytest.mark.smoke
+
+N = 15              # H = 0.04 m cuts the 8th row of cells in half
+END = "1"           # s: 36 degrees of rotation
+PERIOD = "0.5"      # s: the period of (7.6) in the test, so J exists
+L, H = 0.1, 0.04
+OMEGA = -math.pi / 5
+RHO_AIR, G = 1.0, 9.81
+
+
+def _set_period(case, period):
+    """Give the rotatingDrum monitor a short period (T of (7.6))."""
+    path = case / "system" / "controlDict"
+    text = path.read_text()
+    text, n = re.subn(r"(surfaceRadius[^\n]*\n)",
+                      r"\g<1>        period          " + period + ";\n",
+                      text, count=1)
+    assert n == 1, "no surfaceRadius entry in the drum's controlDict"
+    path.write_text(text)
+
+
+def _run(dest, *options):
+    case = fresh_case("squareDrum", dest=dest, tutorial=True)
+    _set_period(case, PERIOD)
+    foam(case, "./Allrun", "-N", str(N), "-endTime", END,
+         "-writeInterval", PERIOD, *options)
+    return case
+
+
+@pytest.fixture(scope="module")
+def serial(foam_env):
+    return _run("squareDrum_smoke/serial")
+
+
+@pytest.fixture(scope="module")
+def parallel(foam_env):
+    return _run("squareDrum_smoke/parallel", "-parallel")
+
+
+def test_initial_state(serial):
+    """(7.1): grains 50:50 below Z = H with the cut row at exactly half,
+    air above; (7.2): U = Omega k x r at the cell centres."""
+    case = serial
+    C = cell_centres(case, "0")
+    small = read_field(case, "0", "alpha.small")
+    large = read_field(case, "0", "alpha.large")
+    air = read_field(case, "0", "alpha.air")
+    dx = 2 * L / N
+    below = np.clip((H - (C[:, 1] - 0.5 * dx)) / dx, 0, 1)
+    assert np.any((below > 0) & (below < 1)), "no cell is cut by Z = H"
+    assert np.allclose(small, 0.5 * below, rtol=0, atol=1e-12)
+    assert np.allclose(large, 0.5 * below, rtol=0, atol=1e-12)
+    assert np.allclose(air, 1 - below, rtol=0, atol=1e-12)
+    U = read_field(case, "0", "U")
+    exact = np.c_[-OMEGA * C[:, 1], OMEGA * C[:, 0]]
+    # written with 10 digits (writePrecision)
+    assert np.allclose(U[:, :2], exact, rtol=1e-9, atol=1e-15)
+    assert np.all(U[:, 2] == 0)
+
+
+@pytest.mark.parametrize("which", ["serial", "parallel"])
+def test_conservation_and_bounds(which, request):
+    """Every phase's volume constant to 1e-10 (relative) while the mesh
+    turns; every fraction within [-1e-10, 1 + 1e-10]."""
+    case = request.getfixturevalue(which)
+    v = post.volumes(case)
+    assert v["t"][-1] == pytest.approx(float(END)), v["t"][-1]
+    grains0 = (H + L) * 2 * L * (2 * L / N)
+    assert v["small"][0] == pytest.approx(0.5 * grains0, rel=1e-9)
+    for phase in ("air", "small", "large"):
+        drift = np.max(np.abs(v[phase] / v[phase][0] - 1))
+        assert drift < 1e-10, (phase, drift)
+    lo, hi = post.bounds(case)
+    assert lo > -1e-10 and hi < 1 + 1e-10, (lo, hi)
+
+
+def test_pressure_level(serial):
+    """The reference cell has turned into the grains, yet the air keeps
+    the pressure level (p - rho^a g.x = pRefValue = 0 on average over the
+    pure air) and the grains carry their weight."""
+    case = serial
+    t = post.time_names(case)[-1]
+    C = cell_centres(case, t)
+    p = read_field(case, t, "p")
+    air = read_field(case, t, "alpha.air")
+    pure = air >= 0.99
+    assert pure.sum() > 0
+    level = np.mean(p[pure] + RHO_AIR * G * C[pure, 1])
+    weight = 1500 * G * 0.05
+    assert abs(level) < 1e-6 * weight, level
+    assert np.max(p) > weight, np.max(p)
+    assert air[0] < 0.01, "the reference cell 0 should be in the grains"
+
+
+def test_change_over_period(serial):
+    """J of (7.6) written by rotatingDrum equals the mean of |phi^s(t) -
+    phi^s(t - T)| of the written fields (uniform cells)."""
+    case = serial
+    m = post.monitor(case)
+    t1 = float(END)
+    t0 = t1 - float(PERIOD)
+    k = np.argmin(np.abs(m["t"] - t1))
+    assert abs(m["t"][k] - t1) < 1e-9
+    J = np.mean(np.abs(read_field(case, f"{t1:g}", "alpha.small")
+                       - read_field(case, f"{t0:g}", "alpha.small")))
+    assert J > 1e-4, "phi^s did not change: no segregation"
+    assert m["J"][k] == pytest.approx(J, rel=1e-6, abs=1e-9)
+    assert np.all(np.isnan(m["J"][m["t"] < float(PERIOD) - 1e-9]))
+    assert np.all(np.isfinite(m["angle"])) and np.all(m["peak"] >= 0)
+
+
+def test_serial_parallel(serial, parallel):
+    """2 ranks follow the serial run: surface angle, peak speed and J
+    within what the solver tolerances allow (the PISO correctors stop at a
+    relative tolerance of 0.01, which depends on the decomposition;
+    measured: 2.2e-4 degrees, 2.1e-4 and 1.6e-5 relative)."""
+    a, b = post.monitor(serial), post.monitor(parallel)
+    assert np.array_equal(a["t"], b["t"])
+    assert np.allclose(a["angle"], b["angle"], rtol=0, atol=0.01)
+    assert np.allclose(a["peak"], b["peak"], rtol=5e-3, atol=1e-6)
+    assert np.allclose(a["J"], b["J"], rtol=1e-3, equal_nan=True)
