@@ -1,0 +1,188 @@
+"""Bad input: every malformed case stops before the first time step with a
+FatalIOError (or FatalError) that names the file, the keyword and the bad
+value; never a crash, a core dump, or a written field.
+
+The base case is the square drum (tutorials/squareDrum) on 8 x 8 cells,
+set up once; each test copies it, breaks one entry, and runs the solver
+for one step.  Its well-formed copy runs (test_base_runs), so a failure
+below is the broken entry's.
+"""
+import re
+import shutil
+
+import pytest
+
+from cases import RESULTS, foam, run
+
+pytestmark = pytest.mark.smoke
+
+GP = "constant/granularProperties"
+FV = "system/fvSolution"
+CD = "system/controlDict"
+DM = "constant/dynamicMeshDict"
+
+SMALL_BG = (r"frictionLaw     BarkerGray;\n        BarkerGrayCoeffs\n"
+            r"        \{[^}]*\}")
+
+INTERNAL = r"internalField\s+nonuniform\s+List<scalar>\s*\d+\s*\(.*?\)\s*;"
+
+# (id, file, pattern, replacement, words the message must contain)
+CASES = [
+    ("no-grains", GP, r"\ngrains\n\{.*?\n\}\n", "\n",
+     ["granularProperties", "grains"]),
+    ("no-segregation", GP, r"\nsegregation\n\{.*?\n\}\n", "\n",
+     ["granularProperties", "segregation"]),
+    ("no-diffusion", GP, r"\ndiffusion\n\{.*?\n\}\n", "\n",
+     ["granularProperties", "diffusion"]),
+    ("no-air", GP, r"\nair\n\{.*?\n\}\n", "\n",
+     ["granularProperties", "air"]),
+    ("no-friction-law", GP, r"frictionLaw     BarkerGray;", "",
+     ["granularProperties", "frictionLaw"]),
+    ("unknown-friction-law", GP, r"frictionLaw     BarkerGray;",
+     "frictionLaw     BarkerGrey;",
+     ["granularProperties", "frictionLaw", "BarkerGrey", "BarkerGray"]),
+    ("unknown-segregation", GP, r"model       Trewhela;",
+     "model       Trewela;",
+     ["granularProperties", "model", "Trewela", "Trewhela"]),
+    ("unknown-diffusion", GP, r"model       UtterBehringer;",
+     "model       Utter;",
+     ["granularProperties", "model", "Utter", "UtterBehringer"]),
+    ("unknown-mixture-rule", GP, r"mixtureRule     weightedFriction;",
+     "mixtureRule     weighted;",
+     ["granularProperties", "mixtureRule", "weighted"]),
+    ("unknown-sharpening", GP, r"sharpening      segregation;",
+     "sharpening      sharp;",
+     ["granularProperties", "sharpening", "sharp"]),
+    ("d-zero", GP, r"d               1e-3;", "d               0;",
+     ["granularProperties", "d", "0"]),
+    ("d-negative", GP, r"d               2e-3;", "d               -2e-3;",
+     ["granularProperties", "d", "-0.002"]),
+    ("rhoStar-negative", GP, r"rhoStar         2500;",
+     "rhoStar         -2500;",
+     ["granularProperties", "rhoStar", "-2500"]),
+    ("air-rho-zero", GP, r"rho             1;", "rho             0;",
+     ["granularProperties", "rho", "0"]),
+    ("Phi-above-one", GP, r"Phi             0.6;", "Phi             1.2;",
+     ["granularProperties", "Phi", "1.2"]),
+    ("etaMax-zero", GP, r"etaMax          \$etaMax;",
+     "etaMax          0;", ["granularProperties", "etaMax", "0"]),
+    ("Jop-mus-above-mud", GP, SMALL_BG,
+     "frictionLaw Jop; JopCoeffs { mus 0.8; mud 0.5; I0 0.5106; }",
+     ["granularProperties", "mus", "0.8", "mud"]),
+    ("BarkerGray-mus-above-mud", GP, r"mus     0.3671359;",
+     "mus     0.9;", ["granularProperties", "mus", "0.9", "mud"]),
+    ("pair-unknown-phase", GP, r"phases      \(small large\);\n        model       Trewhela",
+     "phases      (small medium);\n        model       Trewhela",
+     ["granularProperties", "phases", "medium"]),
+    ("pair-twice", GP, r"\}\n\ndiffusion\n\{",
+     "    twice { phases (large small); model constant; f 1e-3; }\n}\n"
+     "\ndiffusion\n{",
+     ["granularProperties", "small", "large"]),
+    ("diffusion-air-grains", GP, r"phases      \(small large\);\n        model       UtterBehringer",
+     "phases      (air small);\n        model       UtterBehringer",
+     ["granularProperties", "phases", "air"]),
+    ("negative-Trewhela-B", GP, r"B 0.3744;", "B -0.3744;",
+     ["granularProperties", "B", "-0.3744"]),
+    ("zero-air-direction", GP, r"direction       antiGravity;",
+     "direction       (0 0 0);",
+     ["granularProperties", "direction", "(0 0 0)"]),
+    ("unknown-air-direction", GP, r"direction       antiGravity;",
+     "direction       upwards;",
+     ["granularProperties", "direction", "upwards"]),
+    ("negative-air-f", GP, r"f               1;", "f               -1;",
+     ["granularProperties", "f", "-1"]),
+    ("alpha-above-one", "0/alpha.small", INTERNAL,
+     "internalField   uniform 1.5;",
+     ["alpha.small", "1.5"]),
+    ("alphas-not-summing", "0/alpha.air", INTERNAL,
+     "internalField   uniform 0.5;",
+     ["sum", "1"]),
+    ("implicit-without-predictor", FV, r"momentumPredictor   yes;",
+     "momentumPredictor   no;",
+     ["fvSolution", "viscousStress", "implicit", "momentumPredictor"]),
+    ("unknown-viscous-stress", FV, r"viscousStress       implicit;",
+     "viscousStress       semi;",
+     ["fvSolution", "viscousStress", "semi"]),
+    ("drum-interval-not-dividing", CD,
+     r"writeInterval   0.05;               // divides",
+     "writeInterval   0.03;               // divides",
+     ["controlDict", "writeInterval", "0.03"]),
+    ("drum-zero-axis", DM, r"axis        \(0 0 1\);", "axis        (0 0 0);",
+     ["dynamicMeshDict", "axis", "(0 0 0)"]),
+]
+
+
+@pytest.fixture(scope="module")
+def base(foam_env):
+    """The drum on 8 x 8 cells, ascii and uncompressed, set up, one step of
+    1e-4 s (no time is written)."""
+    case = RESULTS / "bad_input" / "base"
+    if case.parent.exists():
+        shutil.rmtree(case.parent)
+    shutil.copytree(RESULTS.parent.parent / "tutorials" / "squareDrum", case)
+    par = case / "system" / "drumParameters"
+    par.write_text(re.sub(r"\nN\s+\d+;", "\nN 8;", par.read_text()))
+    cd = case / CD
+    text = cd.read_text()
+    for old, new in (("writeCompression on;", "writeCompression off;"),
+                     ("adjustTimeStep  yes;", "adjustTimeStep  no;")):
+        assert old in text, old
+        text = text.replace(old, new)
+    text = re.sub(r"\ndeltaT\s+\S+;", "\ndeltaT 1e-4;", text)
+    text = re.sub(r"\nendTime\s+\S+;", "\nendTime 1e-4;", text)
+    cd.write_text(text)
+    shutil.copytree(case / "0.orig", case / "0")
+    foam(case, "blockMesh")
+    foam(case, "setGranularFields")
+    return case
+
+
+def _times(case):
+    out = []
+    for d in case.iterdir():
+        try:
+            float(d.name)
+        except ValueError:
+            continue
+        out.append(d.name)
+    return sorted(out)
+
+
+def _solve(case):
+    res = run(["granularSegregationFoam"], case, timeout=120)
+    return res.returncode, res.stdout + res.stderr
+
+
+def test_base_runs(base, tmp_path):
+    """The unbroken copy runs its step and ends."""
+    case = tmp_path / "ok"
+    shutil.copytree(base, case)
+    rc, out = _solve(case)
+    assert rc == 0, out[-2000:]
+    assert "\nEnd" in out
+
+
+@pytest.mark.parametrize("name,path,pattern,replacement,words", CASES,
+                         ids=[c[0] for c in CASES])
+def test_refused(base, tmp_path, name, path, pattern, replacement, words):
+    case = tmp_path / name
+    shutil.copytree(base, case)
+    target = case / path
+    text = target.read_text()
+    broken, n = re.subn(pattern, replacement, text, count=1, flags=re.S)
+    assert n == 1, f"{name}: the pattern {pattern!r} is not in {path}"
+    target.write_text(broken)
+    before = {t: sorted(p.name for p in (case / t).iterdir())
+              for t in _times(case)}
+
+    rc, out = _solve(case)
+
+    assert rc > 0, f"{name}: exit {rc} (a signal if < 0)\n{out[-3000:]}"
+    assert "core dumped" not in out.lower() and "sigsegv" not in out.lower()
+    assert "FOAM FATAL" in out, out[-3000:]
+    message = out[out.index("FOAM FATAL"):]
+    missing = [w for w in words if w not in message]
+    assert not missing, f"{name}: {missing} not in\n{message[:2000]}"
+    after = {t: sorted(p.name for p in (case / t).iterdir())
+             for t in _times(case)}
+    assert after == before, f"{name}: fields written: {after}"
