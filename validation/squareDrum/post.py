@@ -138,24 +138,22 @@ def sample_rings(case):
     OpenFOAM's postProcess, on the moved meshes), once."""
     if not (Path(case) / "postProcessing" / "rings").is_dir():
         foam(case, "postProcess", "-dict", "system/ringsDict", "-fields",
-             "(alpha.small alpha.air)")
+             "(alpha.small alpha.air I)")
 
 
 def ring(case, time_name, name=LOBE_RING):
-    """phi^s and phi^a sampled on a circle (the `rings` sets): the lab
-    angle [rad, 0..2pi), phi^s, phi^a."""
+    """phi^s, phi^a and I sampled on a circle (the `rings` sets): the lab
+    angle [rad, 0..2pi) and {'alpha.small', 'alpha.air', 'I'}."""
     folder = Path(case) / "postProcessing" / "rings" / str(time_name)
     files = sorted(folder.glob(f"{name}_*.xy"))
     assert files, f"no ring {name} in {folder}"
     a = np.loadtxt(files[0])
     header = files[0].name[len(name) + 1:-3].split("_")
-    assert sorted(header) == ["alpha.air", "alpha.small"], header
-    assert a.shape[1] == 5, f"{files[0]}: {a.shape[1]} columns"
+    assert sorted(header) == ["I", "alpha.air", "alpha.small"], header
+    assert a.shape[1] == 3 + len(header), f"{files[0]}: {a.shape[1]} columns"
     theta = np.mod(np.arctan2(a[:, 1], a[:, 0]), 2 * math.pi)
     order = np.argsort(theta)
-    col = {h: 3 + k for k, h in enumerate(header)}
-    return (theta[order], a[order, col["alpha.small"]],
-            a[order, col["alpha.air"]])
+    return theta[order], {h: a[order, 3 + k] for k, h in enumerate(header)}
 
 
 def _time_name(case, t):
@@ -168,43 +166,54 @@ def _time_name(case, t):
 # Measurements
 # --------------------------------------------------------------------------
 
+def _body(f):
+    """The quasi-static body on a ring: grains (phi^a < 1/2) below the
+    creep boundary (I < I_1), i.e. not in the surface avalanche."""
+    return (f["alpha.air"] < 0.5) & (f["I"] < I1)
+
+
 def lobes(case, time_name):
     """Small-rich lobes crossing the LOBE_RING circle at a time: their lab
-    angles [rad].  Only the grains (phi^a < 1/2) count; a lobe is a peak
-    of phi^s of prominence LOBE_PROMINENCE, on the periodic circle."""
-    theta, phis, phia = ring(case, time_name)
-    grains = phia < 0.5
-    f = np.where(grains, phis, 0.0)
-    n = f.size
-    ext = np.concatenate((f, f, f))
-    peaks, _ = find_peaks(ext, prominence=LOBE_PROMINENCE)
+    angles [rad].  A lobe is a peak of phi^s of prominence LOBE_PROMINENCE
+    within the body (_body); points outside it are set to the body's
+    largest value, so that no peak is made by a gap's edge."""
+    theta, f = ring(case, time_name)
+    body = _body(f)
+    if not body.any():
+        return np.array([])
+    g = np.where(body, f["alpha.small"], f["alpha.small"][body].max())
+    n = g.size
+    peaks, _ = find_peaks(np.concatenate((g, g, g)),
+                          prominence=LOBE_PROMINENCE)
     peaks = peaks[(peaks >= n) & (peaks < 2 * n)] - n
-    return theta[peaks[grains[peaks]]]
+    return theta[peaks[body[peaks]]]
 
 
 def lobe_period(case, names):
     """Period [s] of the lobes' rotation in the lab frame: the angular
-    shift that best maps the grains' phi^s on the circle at one write time
-    onto the next (least squares over 1-degree shifts), averaged."""
+    shift that best maps phi^s of the body on the circle at one write time
+    onto the next (least squares over the ring's 2-degree shifts),
+    averaged; with the shifts, to show their spread."""
     rates = []
     for a, b in zip(names[:-1], names[1:]):
-        th, f0, a0 = ring(case, a)
-        _, f1, a1 = ring(case, b)
+        th, f0 = ring(case, a)
+        _, f1 = ring(case, b)
+        b0, b1 = _body(f0), _body(f1)
         dt = float(b) - float(a)
         n = th.size
-        step = 2 * math.pi / n
         best = None
         for s in range(-n // 2, n // 2):
-            g = np.roll(f0, s)
-            mask = (np.roll(a0, s) < 0.5) & (a1 < 0.5)
+            mask = np.roll(b0, s) & b1
             if mask.sum() < n // 4:
                 continue
-            err = np.mean((g[mask] - f1[mask]) ** 2)
+            err = np.mean((np.roll(f0["alpha.small"], s)[mask]
+                           - f1["alpha.small"][mask]) ** 2)
             if best is None or err < best[0]:
                 best = (err, s)
-        rates.append(best[1] * step / dt)
+        if best is not None:
+            rates.append(best[1] * 2 * math.pi / n / dt)
     rate = float(np.mean(rates))
-    return 2 * math.pi / abs(rate), rate
+    return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
 def summary(case):
@@ -234,8 +243,22 @@ def summary(case):
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
-    out["lobe_period_s"], out["lobe_rate_rad_s"] = lobe_period(case, names)
+    period, rate, rates = lobe_period(case, names)
+    out["lobe_period_s"] = period
+    out["lobe_rate_rad_s"] = rate
+    out["lobe_rate_spread_rad_s"] = [float(min(rates)), float(max(rates))]
     return out
+
+
+def _json_safe(x):
+    """NaN and infinities as null (JSON has no NaN)."""
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
 
 
 # --------------------------------------------------------------------------
@@ -321,7 +344,8 @@ def figure10(case, out, times=(78.75, 80.0)):
                 (p, "p [Pa]", "viridis"),
                 (logI, r"$\log_{10} I$", "coolwarm"))):
             ax = axes[i, j]
-            pc = ax.pcolormesh(X, Y, v, cmap=cmap, shading="flat")
+            lim = dict(vmin=-5, vmax=1) if i == 2 else {}
+            pc = ax.pcolormesh(X, Y, v, cmap=cmap, shading="flat", **lim)
             if i == 2:
                 ax.contour(xc, yc, np.where(air, np.nan, f["I"]), [I1],
                            colors="k", linewidths=0.8)
@@ -339,13 +363,13 @@ def figure_lobes(case, out):
     names = [n for n in time_names(case) if float(n) > 0]
     rows = []
     for n in names:
-        th, phis, phia = ring(case, n)
-        rows.append(np.where(phia < 0.5, phis, np.nan))
+        th, f = ring(case, n)
+        rows.append(np.where(_body(f), f["alpha.small"], np.nan))
     fig, ax = plt.subplots(figsize=(6.5, 4))
     pc = ax.pcolormesh(np.degrees(th), [float(n) for n in names],
                        np.array(rows), cmap="viridis", vmin=0, vmax=1,
                        shading="nearest")
-    fig.colorbar(pc, ax=ax, label=r"$\varphi^s$ on r = 0.6 L")
+    fig.colorbar(pc, ax=ax, label=r"$\varphi^s$ on r = 0.6 L (body: $I < I_1$)")
     ax.set_xlabel("lab angle [deg]")
     ax.set_ylabel("t [s]")
     _save(fig, out)
@@ -367,6 +391,7 @@ def main(argv=None):
             figure11(case, out / f"figure11_N{s['N']}.png")
             figure10(case, out / f"figure10_N{s['N']}.png")
         figure_lobes(case, out / f"lobes_N{s['N']}.png")
+    numbers = _json_safe(numbers)
     (out / "drum.json").write_text(json.dumps(numbers, indent=2))
     print(json.dumps(numbers, indent=2))
 
