@@ -97,6 +97,8 @@ CASES = [
     ("alphas-not-summing", "0/alpha.air", INTERNAL,
      "internalField   uniform 0.5;",
      ["sum", "1"]),
+    ("nan-velocity", "0/U", r"internalField\s+nonuniform\s+List<vector>\s*\d+\s*\(.*?\)\s*\)\s*;",
+     "internalField   uniform (nan 0 0);", ["U"]),
     ("implicit-without-predictor", FV, r"momentumPredictor   yes;",
      "momentumPredictor   no;",
      ["fvSolution", "viscousStress", "implicit", "momentumPredictor"]),

@@ -90,6 +90,20 @@ def test_conservation_and_bounds(which, request):
     assert lo > -1e-10 and hi < 1 + 1e-10, (lo, hi)
 
 
+@pytest.mark.parametrize("which", ["serial", "parallel"])
+def test_invariants(which, request):
+    """granularInvariants, counted every step: each phase's volume balance
+    to 1e-10, the sum of the fractions 1 to 1e-12, no NaN or Inf."""
+    case = request.getfixturevalue(which)
+    a = post.function_table(case, "invariants", "granularInvariants.dat")
+    assert a[-1, 0] == pytest.approx(float(END))
+    balance, lo, hi = a[:, 1:10:3], a[:, 2:10:3], a[:, 3:10:3]
+    assert np.max(np.abs(balance)) < 1e-10, np.max(np.abs(balance))
+    assert lo.min() > -1e-10 and hi.max() < 1 + 1e-10
+    assert np.max(a[:, 10]) < 1e-12, np.max(a[:, 10])
+    assert np.all(a[:, 11] == 0)
+
+
 def test_pressure_level(serial):
     """The reference cell has turned into the grains, yet the air keeps
     the pressure level (p - rho^a g.x = pRefValue = 0 on average over the

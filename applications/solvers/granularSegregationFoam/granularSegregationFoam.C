@@ -70,6 +70,7 @@ int main(int argc, char *argv[])
      == granularMixture::viscousStress::explicitStress;
 
     turbulence->validate();
+    mixture.checkFinite(U, p);
 
     {
         #include "granularCourantNo.H"
@@ -156,6 +157,8 @@ int main(int argc, char *argv[])
                 p_rgh += shift;
             }
         }
+
+        mixture.checkFinite(U, p);
 
         runTime.write();
 

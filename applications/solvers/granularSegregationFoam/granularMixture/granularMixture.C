@@ -65,6 +65,29 @@ namespace
     }
 }
 
+namespace
+{
+    //- Number of values (over all processors) with a non-finite component
+    template<class Type>
+    Foam::label nonFinite(const Foam::Field<Type>& values)
+    {
+        using namespace Foam;
+        label n = 0;
+        for (const Type& v : values)
+        {
+            for (direction c = 0; c < pTraits<Type>::nComponents; ++c)
+            {
+                if (!std::isfinite(component(v, c)))
+                {
+                    ++n;
+                    break;
+                }
+            }
+        }
+        return returnReduce(n, sumOp<label>());
+    }
+}
+
 #define STATE_FIELD(name, dims, write)                                        \
     stateIO(mesh_, name, write),                                              \
     mesh_,                                                                    \
@@ -358,7 +381,7 @@ void Foam::granularMixture::solveAlphas()
             i,
             new surfaceScalarField
             (
-                "alphaPhi." + alphas_[i].name(),
+                "phiAlpha." + alphas_[i].name(),
                 fvc::flux(phi_, alphas_[i], alphaScheme)
             )
         );
@@ -465,6 +488,7 @@ void Foam::granularMixture::solveAlphas()
         MULES::explicitSolve(geometricOneField(), alpha, alphaPhi);
 
         rhoPhi_ += alphaPhi*(i == 0 ? rhoAir_ : rhoGrains);
+        alphaPhis_[i] = alphaPhi;
         sumAlpha += alpha.primitiveField();
     }
 
@@ -583,6 +607,28 @@ Foam::granularMixture::granularMixture
         );
     }
     checkFractions();
+
+    alphaPhis_.setSize(alphas_.size());
+    forAll(alphaPhis_, i)
+    {
+        alphaPhis_.set
+        (
+            i,
+            new surfaceScalarField
+            (
+                IOobject
+                (
+                    "alphaPhi." + alphas_[i].name(),
+                    mesh_.time().timeName(),
+                    mesh_,
+                    IOobject::NO_READ,
+                    IOobject::NO_WRITE
+                ),
+                mesh_,
+                dimensionedScalar(dimVolume/dimTime, Zero)
+            )
+        );
+    }
 
     forAll(segregation_, k)
     {
@@ -868,6 +914,40 @@ void Foam::granularMixture::correctRheology
 }
 
 
+void Foam::granularMixture::checkFinite
+(
+    const volVectorField& U,
+    const volScalarField& p
+) const
+{
+    DynamicList<word> bad;
+    DynamicList<label> n;
+    const auto check = [&](const word& name, const label k)
+    {
+        if (k)
+        {
+            bad.append(name);
+            n.append(k);
+        }
+    };
+    check(U.name(), nonFinite(U.primitiveField()));
+    check(p.name(), nonFinite(p.primitiveField()));
+    for (const volScalarField& alpha : alphas_)
+    {
+        check(alpha.name(), nonFinite(alpha.primitiveField()));
+    }
+
+    if (bad.size())
+    {
+        FatalErrorInFunction
+            << "Non-finite values (NaN or Inf) at time "
+            << mesh_.time().timeName() << " in " << bad << ", in "
+            << n << " cells: stopping before they are written" << nl
+            << exit(FatalError);
+    }
+}
+
+
 void Foam::granularMixture::solve()
 {
     const Time& runTime = mesh_.time();
@@ -889,6 +969,20 @@ void Foam::granularMixture::solve()
             mesh_,
             dimensionedScalar(rhoPhi_.dimensions(), Zero)
         );
+        PtrList<surfaceScalarField> alphaPhiSums(alphas_.size());
+        forAll(alphaPhiSums, i)
+        {
+            alphaPhiSums.set
+            (
+                i,
+                new surfaceScalarField
+                (
+                    IOobject("alphaPhiSum" + Foam::name(i), runTime.timeName(), mesh_),
+                    mesh_,
+                    dimensionedScalar(alphaPhis_[i].dimensions(), Zero)
+                )
+            );
+        }
         const dimensionedScalar totalDeltaT = runTime.deltaT();
 
         for
@@ -899,8 +993,16 @@ void Foam::granularMixture::solve()
         {
             solveAlphas();
             rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
+            forAll(alphaPhiSums, i)
+            {
+                alphaPhiSums[i] += (runTime.deltaT()/totalDeltaT)*alphaPhis_[i];
+            }
         }
         rhoPhi_ = rhoPhiSum;
+        forAll(alphaPhiSums, i)
+        {
+            alphaPhis_[i] = alphaPhiSums[i];
+        }
     }
     else
     {
