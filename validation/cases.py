@@ -115,3 +115,42 @@ def write_results(case, name, numbers):
     path = case / f"{name}.json"
     path.write_text(json.dumps(numbers, indent=2, sort_keys=True) + "\n")
     return path
+
+
+def set_decomposition(case, method):
+    """Use method (scotch or metis) in case/system/decomposeParDict."""
+    path = case / "system" / "decomposeParDict"
+    text, n = re.subn(r"\nmethod\s+\w+;", f"\nmethod          {method};",
+                      path.read_text(), count=1)
+    assert n == 1, f"no method entry in {path}"
+    path.write_text(text)
+
+
+def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
+               delta_t="1e-4", adjust=False, controls=()):
+    """tutorials/squareDrum on n x n cells in validation/results/<dest>:
+    ascii and uncompressed, blockMesh and setGranularFields run.  Without
+    adjust, fixed steps of delta_t; controls are (regex, replacement) pairs
+    applied to system/controlDict after these settings."""
+    case = fresh_case("squareDrum", dest=dest, tutorial=True)
+    par = case / "system" / "drumParameters"
+    text = par.read_text()
+    for key, value in (("N", n), ("endTime", end_time),
+                       ("writeInterval", write_interval or end_time)):
+        text, k = re.subn(rf"\n{key}\s+[^;]+;", f"\n{key} {value};", text)
+        assert k == 1, f"no {key} in {par}"
+    par.write_text(text)
+    cd = case / "system" / "controlDict"
+    text = cd.read_text()
+    settings = [(r"writeCompression\s+on;", "writeCompression off;"),
+                (r"\ndeltaT\s+\S+;", f"\ndeltaT {delta_t};")]
+    if not adjust:
+        settings.append((r"adjustTimeStep\s+yes;", "adjustTimeStep  no;"))
+    for pattern, replacement in list(settings) + list(controls):
+        text, k = re.subn(pattern, replacement, text, count=1)
+        assert k == 1, f"{pattern!r} not in {cd}"
+    cd.write_text(text)
+    shutil.copytree(case / "0.orig", case / "0")
+    foam(case, "blockMesh")
+    foam(case, "setGranularFields")
+    return case

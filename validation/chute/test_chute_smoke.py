@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-from cases import foam, foam_output, fresh_case
+from cases import foam, foam_output, fresh_case, set_decomposition
 from chute import post
 from exact import bagnold, chute as exact_chute
 
@@ -75,8 +75,12 @@ def test_inflow_profiles(short):
     assert abs(flux / qexact - 1) < 0.01, (flux, qexact)
 
 
-def test_parallel_matches_serial(short):
-    case = fresh_case("chute", dest="chute_smoke/parallel", tutorial=True)
+@pytest.mark.parametrize("method", ["scotch", "metis"])
+def test_parallel_matches_serial(short, method):
+    """2 ranks, decomposed by scotch or metis, give the serial fields."""
+    case = fresh_case("chute", dest=f"chute_smoke/parallel-{method}",
+                      tutorial=True)
+    set_decomposition(case, method)
     foam(case, "./Allrun", "-endTime", STEPS_END,
          "-writeInterval", STEPS_END, "-parallel")
     t = post.time_names(short)[-1]

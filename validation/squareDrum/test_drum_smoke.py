@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from cases import foam, fresh_case
+from cases import foam, fresh_case, set_decomposition
 from chute.post import read_field, cell_centres
 from squareDrum import post
 
@@ -35,9 +35,10 @@ def _set_period(case, period):
     path.write_text(text)
 
 
-def _run(dest, *options):
+def _run(dest, *options, method="scotch"):
     case = fresh_case("squareDrum", dest=dest, tutorial=True)
     _set_period(case, PERIOD)
+    set_decomposition(case, method)
     foam(case, "./Allrun", "-N", str(N), "-endTime", END,
          "-writeInterval", PERIOD, *options)
     return case
@@ -51,6 +52,12 @@ def serial(foam_env):
 @pytest.fixture(scope="module")
 def parallel(foam_env):
     return _run("squareDrum_smoke/parallel", "-parallel")
+
+
+@pytest.fixture(scope="module")
+def parallel_metis(foam_env):
+    return _run("squareDrum_smoke/parallel-metis", "-parallel",
+                method="metis")
 
 
 def test_initial_state(serial):
@@ -74,7 +81,7 @@ def test_initial_state(serial):
     assert np.all(U[:, 2] == 0)
 
 
-@pytest.mark.parametrize("which", ["serial", "parallel"])
+@pytest.mark.parametrize("which", ["serial", "parallel", "parallel_metis"])
 def test_conservation_and_bounds(which, request):
     """Every phase's volume constant to 1e-10 (relative) while the mesh
     turns; every fraction within [-1e-10, 1 + 1e-10]."""
@@ -90,7 +97,7 @@ def test_conservation_and_bounds(which, request):
     assert lo > -1e-10 and hi < 1 + 1e-10, (lo, hi)
 
 
-@pytest.mark.parametrize("which", ["serial", "parallel"])
+@pytest.mark.parametrize("which", ["serial", "parallel", "parallel_metis"])
 def test_invariants(which, request):
     """granularInvariants, counted every step: each phase's volume balance
     to 1e-10, the sum of the fractions 1 to 1e-12, no NaN or Inf."""
@@ -139,11 +146,17 @@ def test_change_over_period(serial):
     assert np.all(np.isfinite(m["angle"])) and np.all(m["peak"] >= 0)
 
 
-def test_serial_parallel(serial, parallel):
-    """2 ranks follow the serial run: surface angle, peak speed and J
-    within what the solver tolerances allow (the PISO correctors stop at a
-    relative tolerance of 0.01, which depends on the decomposition;
-    measured: 2.2e-4 degrees, 2.1e-4 and 1.6e-5 relative)."""
+@pytest.mark.parametrize("which", ["parallel", "parallel_metis"])
+def test_serial_parallel(serial, which, request):
+    """2 ranks (scotch or metis) follow the serial run: surface angle, peak
+    speed and J within what the solver tolerances allow (the PISO
+    correctors stop at a relative tolerance of 0.01, which depends on the
+    decomposition; measured with scotch: 2.2e-4 degrees, 2.1e-4 and 1.6e-5
+    relative)."""
+    parallel = request.getfixturevalue(which)
+    log = (parallel / "log.decomposePar").read_text()
+    method = "metis" if which.endswith("metis") else "scotch"
+    assert re.search(rf"\b{method}\b", log, re.I), log[-1000:]
     a, b = post.monitor(serial), post.monitor(parallel)
     assert np.array_equal(a["t"], b["t"])
     assert np.allclose(a["angle"], b["angle"], rtol=0, atol=0.01)

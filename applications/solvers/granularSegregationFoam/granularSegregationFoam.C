@@ -38,6 +38,9 @@ Description
 #include "pimpleControl.H"
 #include "fvOptions.H"
 #include "CorrectPhi.H"
+#include "dynamicMotionSolverFvMesh.H"
+#include "solidBodyMotionSolver.H"
+#include "meshRotation.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -56,7 +59,9 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+    #include "restartTime.H"
     #include "createDynamicFvMesh.H"
+    #include "checkMeshMotion.H"
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "createFields.H"
