@@ -28,6 +28,7 @@ Description
 #include "diffusivity.H"
 #include "mathematicalConstants.H"
 #include <functional>
+#include <random>
 
 using namespace Foam;
 
@@ -680,6 +681,252 @@ void testBadInput()
         {"Fick", "UtterBehringer", "constant"});
 }
 
+// * * * * * * * * * * * * Random-parameter properties * * * * * * * * * * * //
+
+//- Draws from [lo, hi] (log-uniform if log), seeded: the same every run
+struct draw
+{
+    std::mt19937_64 gen{20211122};
+    scalar operator()(const scalar lo, const scalar hi, const bool log = false)
+    {
+        const scalar u = std::uniform_real_distribution<scalar>(0, 1)(gen);
+        return log
+            ? lo*std::pow(hi/lo, u)
+            : lo + (hi - lo)*u;
+    }
+};
+
+//- A friction law with random coefficients in the documented valid ranges
+//  (k: 0 constant, 1 Jop, 2 BarkerGray)
+std::string randomLaw(draw& r, const label k)
+{
+    std::ostringstream os;
+    os.precision(17);
+    const scalar mus = r(0.1, 0.7);
+    const scalar mud = mus + r(0.01, 0.5);
+    if (k == 0)
+    {
+        os << "frictionLaw constant; constantCoeffs { mu " << mus << "; }";
+    }
+    else if (k == 1)
+    {
+        os << "frictionLaw Jop; JopCoeffs { mus " << mus << "; mud " << mud
+           << "; I0 " << r(0.01, 1, true) << "; }";
+    }
+    else
+    {
+        os << "frictionLaw BarkerGray; BarkerGrayCoeffs { mus " << mus
+           << "; mud " << mud << "; muInf " << r(0, 0.1) << "; I0 "
+           << r(0.01, 1, true) << "; alpha " << r(1.5, 2.5) << "; I1 "
+           << r(1e-3, 0.05, true) << "; }";
+    }
+    return os.str();
+}
+
+//- 200 random mixtures of three grain phases, each at 50 random states
+//  (fractions, pressure including 0 and < 0, |D| including 0): I, mu and
+//  eta finite, 0 <= eta <= etaMax (4.12); every segregation velocity and
+//  diffusivity finite and >= 0; and the pairwise fluxes of (2.13) and
+//  (2.15) built from the laws evaluated for (nu, lambda) and (lambda, nu)
+//  separately sum to zero over the phases (2.12)
+void testRandomProperties()
+{
+    draw r;
+    const label nMixtures = 200;
+    const label n = 50;
+    label nBad = 0, nCap = 0, nPair = 0, nSum = 0;
+    std::string first;
+    const auto fail = [&first](label& counter, const std::string& what)
+    {
+        if (first.empty())
+        {
+            first = what;
+        }
+        ++counter;
+    };
+
+    for (label m = 0; m < nMixtures; ++m)
+    {
+        const scalar etaMax = r(1e-2, 1e4, true);
+        scalar d[3] = {r(1e-4, 1e-2, true), 0, 0};
+        d[1] = d[0]*r(1, 3);
+        d[2] = d[1]*r(1, 3);
+        std::ostringstream os;
+        os.precision(17);
+        os << "rhoStar " << r(500, 5000) << "; Phi " << r(0.4, 0.7)
+           << "; etaMax " << etaMax << "; pMin " << r(1e-10, 1e-4, true)
+           << "; mixtureRule ";
+        // (3.4) averages the coefficients of one law: the same for all
+        const bool weightedParameters = r(0, 1) < 0.5;
+        const label k0 = label(r(0, 3)) % 3;
+        os << (weightedParameters ? "weightedParameters" : "weightedFriction")
+           << "; grains {";
+        for (label i = 0; i < 3; ++i)
+        {
+            const label k = weightedParameters ? k0 : label(r(0, 3)) % 3;
+            os << " g" << i << " { d " << d[i] << "; " << randomLaw(r, k)
+               << " }";
+        }
+        os << " }";
+        const std::string props(os.str());
+        const granularRheology rheology(parse(props));
+
+        // The states: fractions of air and three grain phases, p, |D|
+        scalarField a[3] = {scalarField(n), scalarField(n), scalarField(n)};
+        scalarField p(n), normD(n), g0(n), g1(n), g2(n);
+        for (label c = 0; c < n; ++c)
+        {
+            const scalar grains = c % 10 == 0 ? 0 : r(0, 1);
+            const scalar x = r(0, 1), y = r(0, 1 - x);
+            a[0][c] = grains*x;
+            a[1][c] = grains*y;
+            a[2][c] = grains - a[0][c] - a[1][c];
+            p[c] = c % 7 == 0 ? 0 : c % 11 == 0 ? -r(0, 100) : r(1e-6, 1e5, true);
+            normD[c] = c % 5 == 0 ? 0 : r(1e-6, 1e3, true);
+            g0[c] = r(-1e3, 1e3);
+            g1[c] = r(-1e3, 1e3);
+            g2[c] = r(-1e3, 1e3);
+        }
+        const scalarField* grad[3] = {&g0, &g1, &g2};
+        UPtrList<const scalarField> alphas(3);
+        for (label i = 0; i < 3; ++i)
+        {
+            alphas.set(i, &a[i]);
+        }
+        PtrList<scalarField> w;
+        rheology.grainFractions(alphas, w);
+        UPtrList<const scalarField> wp(3);
+        for (label i = 0; i < 3; ++i)
+        {
+            wp.set(i, &w[i]);
+        }
+        scalarField dbar(n), I(n), mu(n), eta(n), pf(n);
+        rheology.meanDiameter(wp, dbar);
+        rheology.inertialNumber(normD, p, dbar, I);
+        rheology.friction(I, wp, mu);
+        rheology.viscosity(mu, p, normD, eta);
+        forAll(p, c)
+        {
+            pf[c] = rheology.pressure(p[c]);
+            if
+            (
+                !std::isfinite(I[c]) || I[c] < 0 || !std::isfinite(mu[c])
+             || mu[c] < 0 || !std::isfinite(eta[c]) || !std::isfinite(dbar[c])
+            )
+            {
+                fail(nBad, "mixture " + std::to_string(m) + ": " + props);
+            }
+            if (eta[c] < 0 || eta[c] > etaMax)
+            {
+                fail(nCap, "eta outside [0, etaMax]: " + props);
+            }
+        }
+
+        // Pair laws for every ordered pair, evaluated separately
+        const scalarField shearRate(2*normD);
+        const granularState state{shearRate, pf, dbar, wp, r(1, 20)};
+        std::ostringstream tw;
+        tw.precision(17);
+        tw << "model Trewhela; TrewhelaCoeffs { B " << r(0, 2) << "; C "
+           << r(0, 1) << "; E " << r(0, 5) << "; }";
+        std::ostringstream ub;
+        ub.precision(17);
+        ub << "model UtterBehringer; UtterBehringerCoeffs { A "
+           << r(1e-3, 1) << "; }";
+        const std::string seg = r(0, 1) < 0.5
+            ? tw.str() : "model constant; f " + std::to_string(r(0, 1)) + ";";
+        const std::string dif = r(0, 1) < 0.5
+            ? ub.str() : "model constant; D " + std::to_string(r(0, 1e-3)) + ";";
+
+        scalarField F[3][3], D[3][3];
+        for (label i = 0; i < 3; ++i)
+        {
+            for (label j = 0; j < 3; ++j)
+            {
+                F[i][j] = scalarField(n, 0);
+                D[i][j] = scalarField(n, 0);
+                if (i == j)
+                {
+                    continue;
+                }
+                const std::string phases =
+                    "phases (g" + std::to_string(i) + " g" + std::to_string(j) + "); ";
+                segregationVelocity::New(parse(phases + seg), rheology, i, j)
+                    ->f(state, F[i][j]);
+                diffusivity::New(parse(phases + dif), rheology, i, j)
+                    ->D(state, D[i][j]);
+                forAll(F[i][j], c)
+                {
+                    if
+                    (
+                        !std::isfinite(F[i][j][c]) || F[i][j][c] < 0
+                     || !std::isfinite(D[i][j][c]) || D[i][j][c] < 0
+                    )
+                    {
+                        fail(nPair, "pair law: " + props + " " + seg + " " + dif);
+                    }
+                }
+            }
+        }
+        // (2.13): phase i moves along g relative to j with f_ij phi_i phi_j
+        // if smaller, against it if larger; (2.15): D_ij (phi_j grad phi_i
+        // - phi_i grad phi_j).  Each summed over the phases: zero (2.12).
+        for (label c = 0; c < n; ++c)
+        {
+            scalar segSum = 0, segScale = 0, difSum = 0, difScale = 0;
+            for (label i = 0; i < 3; ++i)
+            {
+                for (label j = 0; j < 3; ++j)
+                {
+                    if (i == j)
+                    {
+                        continue;
+                    }
+                    const scalar sign = d[i] < d[j] ? 1 : d[i] > d[j] ? -1 : 0;
+                    const scalar fs = sign*F[i][j][c]*a[i][c]*a[j][c];
+                    const scalar fd =
+                        D[i][j][c]
+                       *(a[j][c]*(*grad[i])[c] - a[i][c]*(*grad[j])[c]);
+                    segSum += fs;
+                    segScale += mag(fs);
+                    difSum += fd;
+                    difScale += mag(fd);
+                }
+            }
+            if
+            (
+                mag(segSum) > 1e-14*segScale
+             || mag(difSum) > 1e-14*difScale
+            )
+            {
+                fail(nSum, "fluxes do not sum to zero: " + props);
+            }
+        }
+    }
+
+    const std::string detail = first.substr(0, 400);
+    check
+    (
+        "random: 10000 states of 200 mixtures give finite dbar, I, mu, eta",
+        nBad == 0, std::to_string(nBad) + " bad, first: " + detail
+    );
+    check
+    (
+        "random: 0 <= eta <= etaMax (4.12) in all 10000 states",
+        nCap == 0, std::to_string(nCap) + " outside, first: " + detail
+    );
+    check
+    (
+        "random: segregation velocities and diffusivities finite and >= 0",
+        nPair == 0, std::to_string(nPair) + " bad, first: " + detail
+    );
+    check
+    (
+        "random: the pairwise fluxes (2.13), (2.15) sum to zero (2.12)",
+        nSum == 0, std::to_string(nSum) + " states, first: " + detail
+    );
+}
+
 } // End anonymous namespace
 
 
@@ -750,6 +997,7 @@ int main(int argc, char *argv[])
 
     testChain();
     testBadInput();
+    testRandomProperties();
 
     Info<< nl << nPassed << " passed, " << nFailed << " failed" << endl;
 
