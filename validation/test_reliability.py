@@ -13,13 +13,14 @@ import pytest
 
 from cases import (RESULTS, foam, foam_output, fresh_case, run,
                    set_decomposition, small_drum, write_results)
-from chute.post import read_field
+from chute.post import cell_centres, read_field
 from squareDrum import post
 
 pytestmark = pytest.mark.smoke
 
 HERE = "reliability"
 PHASES = ("alpha.air", "alpha.small", "alpha.large")
+RHO_AIR, G = 1.0, 9.81      # the drum's air density and |g|
 
 
 def _field_files(case, time_name):
@@ -252,6 +253,14 @@ def test_degenerate_state(foam_env, name):
         assert np.all(air == 1)
     if name == "pure-grains":
         assert np.all(air == 0)
+        # Without air the pressure is levelled at its minimum: p - rho^a g y
+        # vanishes at the top and the grains carry their weight, rho* Phi g
+        # over the height between the highest and lowest cell centres
+        y = cell_centres(case, "0.2")[:, 1]
+        rel = p + RHO_AIR * G * y
+        assert abs(rel.min()) < 1e-9 * p.max(), rel.min()
+        weight = 2500 * 0.6 * G * (y.max() - y.min())
+        assert p.max() == pytest.approx(weight, rel=0.01), (p.max(), weight)
     if name == "zero-shear":
         # The bed at rest stays at rest: measured 2e-10 m/s, the pressure
         # solver's residual flow (the turning drum's walls move 0.063 m/s)

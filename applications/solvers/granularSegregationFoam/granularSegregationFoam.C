@@ -147,16 +147,13 @@ int main(int argc, char *argv[])
             // Closed domains: the reference cell turns with a rotating
             // mesh and may end in the grains, so p is levelled on the air
             // instead, p - rho^a g.x = pRefValue on average over the air
-            scalar airLevel = 0;
-            if
-            (
-                p_rgh.needReference()
-             && mixture.airPressureLevel(p, airLevel)
-            )
+            if (p_rgh.needReference())
             {
                 const dimensionedScalar shift
                 (
-                    "shift", p.dimensions(), pRefValue - airLevel
+                    "shift",
+                    p.dimensions(),
+                    pRefValue - mixture.airPressureLevel(p)
                 );
                 p += shift;
                 p_rgh += shift;

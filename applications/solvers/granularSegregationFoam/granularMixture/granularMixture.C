@@ -793,31 +793,31 @@ Foam::granularMixture::readViscousStress(const pimpleControl& pimple)
 }
 
 
-bool Foam::granularMixture::airPressureLevel
+Foam::scalar Foam::granularMixture::airPressureLevel
 (
-    const volScalarField& p,
-    scalar& level
+    const volScalarField& p
 ) const
 {
     // The mean of p - rho^a g.x over the pure-air cells
+    const scalarField pAir
+    (
+        p.primitiveField()
+      - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
+    );
     const scalarField V
     (
         mesh_.V().field()*pos0(alphas_[0].primitiveField() - 0.99)
     );
     const scalar volAir = gSum(V);
-    if (volAir <= 0)
+    if (volAir > 0)
     {
-        return false;
+        return gSum(V*pAir)/volAir;
     }
-    level = gSum
-    (
-        V
-       *(
-           p.primitiveField()
-         - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
-        )
-    )/volAir;
-    return true;
+
+    // No air (a domain full of grains): the smallest value, so that the
+    // grains' pressure vanishes where it is lowest, as under a free surface,
+    // and is positive elsewhere
+    return gMin(pAir);
 }
 
 
@@ -838,8 +838,7 @@ void Foam::granularMixture::correctRheology
     }
     else
     {
-        scalar c = 0;
-        airPressureLevel(p, c);
+        const scalar c = airPressureLevel(p);
 
         pGranular_.primitiveFieldRef() = max
         (
