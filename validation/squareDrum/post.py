@@ -273,11 +273,15 @@ def _save(fig, out):
 
 
 def figure13(cases, out):
-    """J(t) of (7.6) for every case (figure 13)."""
+    """J(t) of (7.6) for every case (figure 13).  After a restart J exists
+    only where t - T is a written time, one point in 12 (nan between):
+    the finite points are joined."""
     fig, ax = plt.subplots(figsize=(6.5, 3.5))
     for case in cases:
         m = monitor(case)
-        ax.plot(m["t"], m["J"], label=f"N = {int(parameters(case)['N'])}")
+        ok = np.isfinite(m["J"])
+        ax.plot(m["t"][ok], m["J"][ok],
+                label=f"N = {int(parameters(case)['N'])}")
     ax.set_xlabel("t [s]")
     ax.set_ylabel(r"$\mathcal{J}(t)$  (7.6)")
     ax.set_xlim(0, None)
