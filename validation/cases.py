@@ -117,13 +117,21 @@ def write_results(case, name, numbers):
     return path
 
 
+def edit(path, edits, flags=0):
+    """Apply (regex, replacement) pairs to the file path in turn, each to
+    its first match; a pattern that does not match is an assertion
+    failure."""
+    text = path.read_text()
+    for pattern, replacement in edits:
+        text, n = re.subn(pattern, replacement, text, count=1, flags=flags)
+        assert n == 1, f"{pattern!r} not in {path}"
+    path.write_text(text)
+
+
 def set_decomposition(case, method):
     """Use method (scotch or metis) in case/system/decomposeParDict."""
-    path = case / "system" / "decomposeParDict"
-    text, n = re.subn(r"\nmethod\s+\w+;", f"\nmethod          {method};",
-                      path.read_text(), count=1)
-    assert n == 1, f"no method entry in {path}"
-    path.write_text(text)
+    edit(case / "system" / "decomposeParDict",
+         [(r"\nmethod\s+\w+;", f"\nmethod          {method};")])
 
 
 def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
@@ -133,23 +141,15 @@ def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
     adjust, fixed steps of delta_t; controls are (regex, replacement) pairs
     applied to system/controlDict after these settings."""
     case = fresh_case("squareDrum", dest=dest, tutorial=True)
-    par = case / "system" / "drumParameters"
-    text = par.read_text()
-    for key, value in (("N", n), ("endTime", end_time),
-                       ("writeInterval", write_interval or end_time)):
-        text, k = re.subn(rf"\n{key}\s+[^;]+;", f"\n{key} {value};", text)
-        assert k == 1, f"no {key} in {par}"
-    par.write_text(text)
-    cd = case / "system" / "controlDict"
-    text = cd.read_text()
+    edit(case / "system" / "drumParameters",
+         [(rf"\n{key}\s+[^;]+;", f"\n{key} {value};")
+          for key, value in (("N", n), ("endTime", end_time),
+                             ("writeInterval", write_interval or end_time))])
     settings = [(r"writeCompression\s+on;", "writeCompression off;"),
                 (r"\ndeltaT\s+\S+;", f"\ndeltaT {delta_t};")]
     if not adjust:
         settings.append((r"adjustTimeStep\s+yes;", "adjustTimeStep  no;"))
-    for pattern, replacement in list(settings) + list(controls):
-        text, k = re.subn(pattern, replacement, text, count=1)
-        assert k == 1, f"{pattern!r} not in {cd}"
-    cd.write_text(text)
+    edit(case / "system" / "controlDict", settings + list(controls))
     shutil.copytree(case / "0.orig", case / "0")
     foam(case, "blockMesh")
     foam(case, "setGranularFields")

@@ -12,7 +12,7 @@ import shutil
 
 import pytest
 
-from cases import run, small_drum
+from cases import edit, run, small_drum
 
 pytestmark = pytest.mark.smoke
 
@@ -155,11 +155,7 @@ def test_base_runs(base, tmp_path):
 def test_refused(base, tmp_path, name, path, pattern, replacement, words):
     case = tmp_path / name
     shutil.copytree(base, case)
-    target = case / path
-    text = target.read_text()
-    broken, n = re.subn(pattern, replacement, text, count=1, flags=re.S)
-    assert n == 1, f"{name}: the pattern {pattern!r} is not in {path}"
-    target.write_text(broken)
+    edit(case / path, [(pattern, replacement)], flags=re.S)
     before = {t: sorted(p.name for p in (case / t).iterdir())
               for t in _times(case)}
 

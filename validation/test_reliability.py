@@ -11,7 +11,7 @@ import shutil
 import numpy as np
 import pytest
 
-from cases import (RESULTS, foam, foam_output, fresh_case, run,
+from cases import (RESULTS, edit, foam, foam_output, fresh_case, run,
                    set_decomposition, small_drum, write_results)
 from chute.post import cell_centres, read_field
 from squareDrum import post
@@ -50,11 +50,7 @@ def _max_relative_difference(a_case, b_case, time_name):
 
 def _set_end(case, path, key, value):
     """Set `key value;` in case/path (a plain file, no #include edits)."""
-    target = case / path
-    text, n = re.subn(rf"\n{key}\s+[^;\n]+;", f"\n{key} {value};",
-                      target.read_text(), count=1)
-    assert n == 1, f"no {key} in {target}"
-    target.write_text(text)
+    edit(case / path, [(rf"\n{key}\s+[^;\n]+;", f"\n{key} {value};")])
 
 
 def _restart_pair(make, name, end_file, half, end):
@@ -78,14 +74,9 @@ def _layer(dest):
     """The inclined Bagnold layer (validation/cases/inclinedLayer), ascii
     at 17 digits, written every 0.02 s."""
     case = fresh_case("inclinedLayer", dest=dest)
-    cd = case / "system" / "controlDict"
-    text = cd.read_text()
-    for pattern, new in FULL_PRECISION + [
-            (r"\nwriteInterval\s+\S+;", "\nwriteInterval   0.02;"),
-            (r"\nendTime\s+\S+;", "\nendTime         0.04;")]:
-        text, n = re.subn(pattern, new, text, count=1)
-        assert n == 1, pattern
-    cd.write_text(text)
+    edit(case / "system" / "controlDict", FULL_PRECISION + [
+        (r"\nwriteInterval\s+\S+;", "\nwriteInterval   0.02;"),
+        (r"\nendTime\s+\S+;", "\nendTime         0.04;")])
     shutil.copytree(case / "0.orig", case / "0")
     foam(case, "blockMesh")
     foam(case, "setFields")
@@ -196,10 +187,7 @@ def _degenerate(name, edits):
     case = small_drum(f"{HERE}/{name}", n=8, end_time="0.2",
                       write_interval="0.1", adjust=True)
     for path, pattern, replacement in edits:
-        target = case / path
-        text, n = re.subn(pattern, replacement, target.read_text(), count=1)
-        assert n == 1, f"{name}: {pattern!r} not in {path}"
-        target.write_text(text)
+        edit(case / path, [(pattern, replacement)])
     if any(path in (SETUP, "constant/dynamicMeshDict")
            for path, _, _ in edits):
         shutil.rmtree(case / "0")

@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from cases import foam, fresh_case, set_decomposition
+from cases import edit, foam, fresh_case, set_decomposition
 from chute.post import read_field, cell_centres
 from squareDrum import post
 
@@ -26,13 +26,9 @@ RHO_AIR, G = 1.0, 9.81
 
 def _set_period(case, period):
     """Give the rotatingDrum monitor a short period (T of (7.6))."""
-    path = case / "system" / "controlDict"
-    text = path.read_text()
-    text, n = re.subn(r"(surfaceRadius[^\n]*\n)",
-                      r"\g<1>        period          " + period + ";\n",
-                      text, count=1)
-    assert n == 1, "no surfaceRadius entry in the drum's controlDict"
-    path.write_text(text)
+    edit(case / "system" / "controlDict",
+         [(r"(surfaceRadius[^\n]*\n)",
+           r"\g<1>        period          " + period + ";\n")])
 
 
 def _run(dest, *options, method="scotch"):

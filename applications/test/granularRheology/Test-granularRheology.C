@@ -734,15 +734,20 @@ void testRandomProperties()
     draw r;
     const label nMixtures = 200;
     const label n = 50;
-    label nBad = 0, nCap = 0, nPair = 0, nSum = 0;
-    std::string first;
-    const auto fail = [&first](label& counter, const std::string& what)
+    // Failures of each property: their count and the first one's input
+    struct failures
     {
-        if (first.empty())
+        label n = 0;
+        std::string first;
+    };
+    failures nBad, nCap, nPair, nSum;
+    const auto fail = [](failures& f, const std::string& what)
+    {
+        if (f.first.empty())
         {
-            first = what;
+            f.first = what.substr(0, 400);
         }
-        ++counter;
+        ++f.n;
     };
 
     for (label m = 0; m < nMixtures; ++m)
@@ -904,27 +909,22 @@ void testRandomProperties()
         }
     }
 
-    const std::string detail = first.substr(0, 400);
-    check
-    (
-        "random: 10000 states of 200 mixtures give finite dbar, I, mu, eta",
-        nBad == 0, std::to_string(nBad) + " bad, first: " + detail
-    );
-    check
-    (
-        "random: 0 <= eta <= etaMax (4.12) in all 10000 states",
-        nCap == 0, std::to_string(nCap) + " outside, first: " + detail
-    );
-    check
-    (
-        "random: segregation velocities and diffusivities finite and >= 0",
-        nPair == 0, std::to_string(nPair) + " bad, first: " + detail
-    );
-    check
-    (
-        "random: the pairwise fluxes (2.13), (2.15) sum to zero (2.12)",
-        nSum == 0, std::to_string(nSum) + " states, first: " + detail
-    );
+    const std::pair<std::string, const failures&> properties[] =
+    {
+        {"random: 10000 states of 200 mixtures give finite dbar, I, mu, eta", nBad},
+        {"random: 0 <= eta <= etaMax (4.12) in all 10000 states", nCap},
+        {"random: segregation velocities and diffusivities finite and >= 0", nPair},
+        {"random: the pairwise fluxes (2.13), (2.15) sum to zero (2.12)", nSum},
+    };
+    for (const auto& property : properties)
+    {
+        check
+        (
+            property.first, property.second.n == 0,
+            std::to_string(property.second.n) + " failed, first: "
+          + property.second.first
+        );
+    }
 }
 
 } // End anonymous namespace
