@@ -26,6 +26,7 @@ Description
 #include "grainPairModels.H"
 #include "segregationVelocity.H"
 #include "diffusivity.H"
+#include "GrayChugunov.H"
 #include "mathematicalConstants.H"
 #include <functional>
 #include <random>
@@ -587,6 +588,93 @@ void testChain()
 
 // * * * * * * * * * * * * * * * * Bad input  * * * * * * * * * * * * * * * //
 
+//- Section 6.1: the mixture's inverse friction against (6.3), and the
+//  Gray-Chugunov composition (5.8)-(5.11) of the stratified inflow
+void testStratified()
+{
+    // Table 1 Jop for the small grains, mu_s^l = 1.2 mu_s for the large
+    const std::string large =
+        "frictionLaw Jop; JopCoeffs { mus 0.4104; mud 0.557; I0 0.069; }";
+    const std::string pairs =
+        " segregation { sl { phases (small large); model constant; f 7e-3; } }"
+        " diffusion { sl { phases (small large); model constant; D 1e-6; } }";
+    const scalar tanZeta = std::tan(24*deg);
+    for (const word rule : {"weightedFriction", "weightedParameters"})
+    {
+        std::ostringstream os;
+        os  << "rhoStar 2500; Phi 0.6; etaMax 10; mixtureRule " << rule
+            << "; grains { small { d 0.5e-3; " << table1Jop << " }"
+            << " large { d 0.5e-3; " << large << " } }" << pairs;
+        const granularRheology rheology(parse(os.str()));
+        const scalar ws = 0.3;
+        const scalar mus = ws*0.342 + (1 - ws)*0.4104;
+        checkClose
+        (
+            "(6.3) I of a 30:70 Jop mixture at 24 deg, " + rule,
+            rheology.inverseFriction({ws, 1 - ws}, tanZeta),
+            0.069*(tanZeta - mus)/(0.557 - tanZeta), 1e-12
+        );
+        checkClose
+        (
+            "(5.5) inverse friction of a pure phase = its law's, " + rule,
+            rheology.inverseFriction({0, 1}, tanZeta),
+            rheology.law(1).inverse(tanZeta), 1e-15
+        );
+    }
+
+    std::ostringstream os;
+    os  << "rhoStar 2500; Phi 0.6; etaMax 10; grains { small { d 0.5e-3; "
+        << table1Jop << " } large { d 0.5e-3; " << large << " } }" << pairs;
+    const granularRheology rheology(parse(os.str()));
+    const scalar h = 5e-3;
+    const GrayChugunov gc(rheology, h, std::cos(24*deg), parse("phibar 0.5;"));
+    checkClose("(5.9) Pe of table 3 at 24 deg = 31.97", gc.Pe(), 31.97, 2e-4);
+
+    // (5.10): the depth average is phibar (Simpson, 2000 intervals)
+    const label n = 2000;
+    scalar sum = 0;
+    for (label k = 0; k <= n; ++k)
+    {
+        const scalar wgt = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+        sum += wgt*gc.phiSmall(h*k/n);
+    }
+    checkClose("(5.10) depth average of (5.8) = phibar 0.5", sum/(3*n), 0.5, 1e-9);
+    checkClose
+    (
+        "(5.8) phi^s = 1/2 at mid-depth for phibar = 1/2 (symmetry)",
+        gc.phiSmall(0.5*h), 0.5, 1e-12
+    );
+    check
+    (
+        "(5.8) small grains at the base, large at the surface",
+        gc.phiSmall(0) > 0.99 && gc.phiSmall(h) < 0.01
+     && gc.fraction(1, h) == 1 - gc.phiSmall(h)
+    );
+
+    std::ostringstream bad;
+    bad << "rhoStar 2500; Phi 0.6; etaMax 10; grains { small { d 1e-3; "
+        << table1Jop << " } large { d 1.5e-3; " << table1Jop << " } }"
+        << " segregation { sl { phases (small large); model Trewhela; } }"
+        << " diffusion { sl { phases (small large); model constant; D 1e-6; } }";
+    expectError
+    (
+        "(5.8) refused for a Trewhela pair (constant f and D only)",
+        [&]()
+        {
+            const granularRheology r(parse(bad.str()));
+            GrayChugunov(r, h, 1, parse("phibar 0.5;"));
+        },
+        {"model", "Trewhela", "constant"}
+    );
+    expectError
+    (
+        "(5.8) refused for phibar = 1",
+        [&]() { GrayChugunov(rheology, h, 1, parse("phibar 1;")); },
+        {"phibar", "1"}
+    );
+}
+
+
 void testBadInput()
 {
     auto rheology = [](const std::string& text)
@@ -996,6 +1084,7 @@ int main(int argc, char *argv[])
     }
 
     testChain();
+    testStratified();
     testBadInput();
     testRandomProperties();
 

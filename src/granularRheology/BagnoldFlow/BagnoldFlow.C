@@ -5,6 +5,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "BagnoldFlow.H"
+#include "GrayChugunov.H"
 #include "granularInput.H"
 #include "unitConversion.H"
 
@@ -33,7 +34,9 @@ Foam::BagnoldFlow::BagnoldFlow
     Phi_(rheology.Phi().value()),
     Izeta_(0),
     rhoAir_(rhoAir),
-    etaAir_(etaAir)
+    etaAir_(etaAir),
+    uTable_(),
+    ubarTable_(0)
 {
     const label i = rheology.index(phase);
     if (i < 0)
@@ -86,6 +89,80 @@ Foam::BagnoldFlow::BagnoldFlow
             << " (tan zeta must lie inside the range of the friction law)"
             << nl << exit(FatalIOError);
     }
+
+    if (dict.found("phibar"))
+    {
+        tabulate(rheology, dict);
+    }
+}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::BagnoldFlow::tabulate
+(
+    const granularRheology& rheology,
+    const dictionary& dict
+)
+{
+    const GrayChugunov composition(rheology, h_, cosZeta_, dict);
+    const scalar tanZeta = sinZeta_/cosZeta_;
+    const scalar c = sqrt(Phi_*g_*cosZeta_);
+
+    const label n = 4000;
+    const scalar ds = sqrt(h_)/n;
+
+    // 2 s^2 I/dbar at s_k = k ds, z = h - s^2: (6.1)/(6.3) and (6.6)
+    scalarList integrand(n + 1);
+    scalarList w(rheology.nGrains(), 0.0);
+    forAll(integrand, k)
+    {
+        const scalar s = k*ds;
+        const scalar z = h_ - sqr(s);
+        scalar dbar = 0;
+        forAll(w, i)
+        {
+            w[i] = composition.fraction(i, z);
+            dbar += w[i]*rheology.d(i);
+        }
+        integrand[k] = 2*sqr(s)*rheology.inverseFriction(w, tanZeta)/dbar;
+    }
+
+    // (6.5) from the base s = sqrt(h) up: u(s_k) = c int_{s_k}^{sqrt h}
+    uTable_.setSize(n + 1);
+    uTable_[n] = 0;
+    for (label k = n - 1; k >= 0; --k)
+    {
+        uTable_[k] =
+            uTable_[k + 1] + c*0.5*ds*(integrand[k] + integrand[k + 1]);
+    }
+
+    // ubar = (1/h) int_0^h u dz = (1/h) int_0^sqrt(h) u 2 s ds
+    ubarTable_ = 0;
+    for (label k = 0; k < n; ++k)
+    {
+        ubarTable_ +=
+            0.5*ds*(2*k*ds*uTable_[k] + 2*(k + 1)*ds*uTable_[k + 1]);
+    }
+    ubarTable_ /= h_;
+}
+
+
+Foam::scalar Foam::BagnoldFlow::uGrains(const scalar z) const
+{
+    const scalar zg = min(max(z, scalar(0)), h_);
+
+    if (stratified())
+    {
+        const label n = uTable_.size() - 1;
+        const scalar x = sqrt(h_ - zg)/sqrt(h_)*n;
+        const label k = min(label(x), n - 1);
+        return uTable_[k] + (x - k)*(uTable_[k + 1] - uTable_[k]);
+    }
+
+    // (5.4)
+    const scalar c = 2*Izeta_/(3*d_)*sqrt(Phi_*g_*cosZeta_);
+    return c*(pow(h_, 1.5) - pow(h_ - zg, 1.5));
 }
 
 
@@ -99,14 +176,11 @@ Foam::scalar Foam::BagnoldFlow::zeta() const
 
 Foam::scalar Foam::BagnoldFlow::u(const scalar z) const
 {
-    // (5.4)
-    const scalar c = 2*Izeta_/(3*d_)*sqrt(Phi_*g_*cosZeta_);
-    const scalar zg = min(max(z, scalar(0)), h_);
-    const scalar uGrains = c*(pow(h_, 1.5) - pow(h_ - zg, 1.5));
+    const scalar ug = uGrains(z);
 
     if (z <= h_)
     {
-        return uGrains;
+        return ug;
     }
 
     // (5.7), ERRATA item 4
@@ -114,12 +188,17 @@ Foam::scalar Foam::BagnoldFlow::u(const scalar z) const
     return
         rhoAir_*g_*sinZeta_/(2*etaAir_)
        *(2*Lz_*(za - h_) + sqr(h_) - sqr(za))
-      + uGrains;
+      + ug;
 }
 
 
 Foam::scalar Foam::BagnoldFlow::ubar() const
 {
+    if (stratified())
+    {
+        return ubarTable_;
+    }
+
     // (5.16)
     return 2*Izeta_/(5*d_)*sqrt(Phi_*g_*cosZeta_)*pow(h_, 1.5);
 }

@@ -5,6 +5,8 @@
 \*---------------------------------------------------------------------------*/
 
 #include "granularInput.H"
+#include "IOdictionary.H"
+#include "Time.H"
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
@@ -161,6 +163,23 @@ const Foam::dictionary& Foam::granularInput::coeffsDict
 )
 {
     return dict.optionalSubDict(modelType + "Coeffs");
+}
+
+
+Foam::dictionary Foam::granularInput::readProperties(const objectRegistry& db)
+{
+    return IOdictionary
+    (
+        IOobject
+        (
+            "granularProperties",
+            db.time().constant(),
+            db,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
 }
 
 

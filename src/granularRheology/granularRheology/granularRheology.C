@@ -228,6 +228,64 @@ void Foam::granularRheology::friction
 }
 
 
+Foam::scalar Foam::granularRheology::inverseFriction
+(
+    const scalarList& w,
+    const scalar muValue
+) const
+{
+    // One phase alone: its own law's inverse (5.5)
+    forAll(w, k)
+    {
+        if (w[k] == 1)
+        {
+            return laws_[k].inverse(muValue);
+        }
+    }
+
+    // A mixture: (3.3) or (3.4) increases with I, so bisect
+    UPtrList<const scalarField> wk(w.size());
+    PtrList<scalarField> store(w.size());
+    forAll(w, k)
+    {
+        store.set(k, new scalarField(1, w[k]));
+        wk.set(k, &store[k]);
+    }
+    scalarField I(1, 0.0), mu(1);
+    auto excess = [&](const scalar x)
+    {
+        I[0] = x;
+        friction(I, wk, mu);
+        return mu[0] - muValue;
+    };
+
+    scalar lo = 0, hi = 1;
+    if (excess(lo) > 0)
+    {
+        FatalErrorInFunction
+            << "The mixture friction of " << names_ << " with fractions " << w
+            << " exceeds " << muValue << " at I = 0: no steady flow"
+            << exit(FatalError);
+    }
+    while (excess(hi) < 0)
+    {
+        hi *= 2;
+        if (hi > 1e12)
+        {
+            FatalErrorInFunction
+                << "The mixture friction of " << names_ << " with fractions "
+                << w << " does not reach " << muValue << exit(FatalError);
+        }
+    }
+    for (label iter = 0; iter < 200 && hi - lo > 4*SMALL*hi; ++iter)
+    {
+        const scalar mid = 0.5*(lo + hi);
+        (excess(mid) < 0 ? lo : hi) = mid;
+    }
+    return 0.5*(lo + hi);
+}
+
+
 void Foam::granularRheology::viscosity
 (
     const scalarField& mu,

@@ -8,7 +8,6 @@
 #include "addToRunTimeSelectionTable.H"
 #include "gravityMeshObject.H"
 #include "granularInput.H"
-#include "IOdictionary.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -54,20 +53,8 @@ BagnoldInletVelocityFvPatchVectorField
             ) == "depthAveraged";
     }
 
-    // The rheology and air of constant/granularProperties, read here without
-    // registering: the solver's mixture owns the registered copy
-    const IOdictionary props
-    (
-        IOobject
-        (
-            "granularProperties",
-            db().time().constant(),
-            db(),
-            IOobject::MUST_READ,
-            IOobject::NO_WRITE,
-            false
-        )
-    );
+    // The rheology and air of constant/granularProperties
+    const dictionary props(granularInput::readProperties(db()));
     if (!props.isDict("air"))
     {
         FatalIOErrorInFunction(props)

@@ -8,6 +8,7 @@
 #include "addToRunTimeSelectionTable.H"
 #include "surfaceFields.H"
 #include "granularInput.H"
+#include "gravityMeshObject.H"
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
@@ -26,11 +27,69 @@ Foam::scalar Foam::layeredInletFractionFvPatchScalarField::readFraction
 }
 
 
+void Foam::layeredInletFractionFvPatchScalarField::readBelow
+(
+    const dictionary& dict
+)
+{
+    ITstream& is = dict.lookup("below");
+    token t(is);
+    if (!t.isWord())
+    {
+        below_ = readFraction(dict, "below");
+        return;
+    }
+    if (t.wordToken() != "stratified")
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'below' in dictionary "
+            << dict.name() << ": below = " << t.wordToken()
+            << " (a fraction in [0, 1], or stratified)" << nl
+            << exit(FatalIOError);
+    }
+
+    const granularRheology rheology(granularInput::readProperties(db()));
+    phase_ = dict.getOrDefault<word>("phase", internalField().name().ext());
+    grain_ = rheology.index(phase_);
+    if (grain_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'phase' in dictionary "
+            << dict.name() << ": phase = " << phase_ << " (below stratified"
+            << " needs a grain phase of " << rheology.dict().name() << ": "
+            << rheology.names() << ")" << nl << exit(FatalIOError);
+    }
+    phibar_ = dict.get<scalar>("phibar");
+
+    const vector g(meshObjects::gravity::New(db().time()).value());
+    const vector n(plane_.normal()/mag(plane_.normal()));
+    composition_.reset
+    (
+        new GrayChugunov(rheology, h_, -(g & n)/max(mag(g), VSMALL), dict)
+    );
+}
+
+
 Foam::tmp<Foam::scalarField>
 Foam::layeredInletFractionFvPatchScalarField::profile() const
 {
     const scalarField fBelow(plane_.fractionBelow(patch(), h_));
-    return fBelow*below_ + (1 - fBelow)*above_;
+    if (!composition_.valid())
+    {
+        return fBelow*below_ + (1 - fBelow)*above_;
+    }
+
+    // (5.8) at the face centre, or at h for a face cut by z = h
+    const scalarField z(plane_.faceHeight(patch()));
+    tmp<scalarField> tf(new scalarField(z.size()));
+    scalarField& f = tf.ref();
+    forAll(f, facei)
+    {
+        f[facei] =
+            fBelow[facei]*composition_->fraction(grain_, z[facei])
+          + (1 - fBelow[facei])*above_;
+    }
+    return tf;
 }
 
 
@@ -47,7 +106,11 @@ layeredInletFractionFvPatchScalarField
     h_(0),
     below_(0),
     above_(0),
-    plane_()
+    plane_(),
+    composition_(),
+    phibar_(0),
+    phase_(),
+    grain_(-1)
 {}
 
 
@@ -61,10 +124,15 @@ layeredInletFractionFvPatchScalarField
 :
     inletOutletFvPatchScalarField(p, iF),
     h_(granularInput::readPositive(dict, "h", dimLength).value()),
-    below_(readFraction(dict, "below")),
+    below_(0),
     above_(readFraction(dict, "above")),
-    plane_(dict)
+    plane_(dict),
+    composition_(),
+    phibar_(0),
+    phase_(),
+    grain_(-1)
 {
+    readBelow(dict);
     phiName_ = dict.getOrDefault<word>("phi", "phi");
     refValue() = profile();
     refGrad() = Zero;
@@ -91,7 +159,14 @@ layeredInletFractionFvPatchScalarField
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
-    plane_(ptf.plane_)
+    plane_(ptf.plane_),
+    composition_
+    (
+        ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
+    ),
+    phibar_(ptf.phibar_),
+    phase_(ptf.phase_),
+    grain_(ptf.grain_)
 {}
 
 
@@ -105,7 +180,14 @@ layeredInletFractionFvPatchScalarField
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
-    plane_(ptf.plane_)
+    plane_(ptf.plane_),
+    composition_
+    (
+        ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
+    ),
+    phibar_(ptf.phibar_),
+    phase_(ptf.phase_),
+    grain_(ptf.grain_)
 {}
 
 
@@ -120,7 +202,14 @@ layeredInletFractionFvPatchScalarField
     h_(ptf.h_),
     below_(ptf.below_),
     above_(ptf.above_),
-    plane_(ptf.plane_)
+    plane_(ptf.plane_),
+    composition_
+    (
+        ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
+    ),
+    phibar_(ptf.phibar_),
+    phase_(ptf.phase_),
+    grain_(ptf.grain_)
 {}
 
 
@@ -144,7 +233,16 @@ void Foam::layeredInletFractionFvPatchScalarField::write(Ostream& os) const
     fvPatchScalarField::write(os);
     os.writeEntryIfDifferent<word>("phi", "phi", phiName_);
     os.writeEntry("h", h_);
-    os.writeEntry("below", below_);
+    if (composition_.valid())
+    {
+        os.writeEntry("below", word("stratified"));
+        os.writeEntry("phibar", phibar_);
+        os.writeEntry("phase", phase_);
+    }
+    else
+    {
+        os.writeEntry("below", below_);
+    }
     os.writeEntry("above", above_);
     plane_.write(os);
     writeEntry("value", os);
