@@ -258,6 +258,22 @@ int main(int argc, char *argv[])
 
     const scalarField below(fractionBelow(mesh, plane(p0, n)));
 
+    // A zero volume flux, as at rest, for the boundary conditions that look
+    // up phi when evaluated (inletOutlet: zero gradient at zero flux)
+    const surfaceScalarField phi
+    (
+        IOobject
+        (
+            "phi",
+            runTime.timeName(),
+            mesh,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        mesh,
+        dimensionedScalar(dimVolume/dimTime, Zero)
+    );
+
     // Phase fractions: air above, the grains' composition below
     const auto setAlpha = [&](const word& phase, const scalarField& value)
     {

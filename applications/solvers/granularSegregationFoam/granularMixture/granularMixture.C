@@ -10,6 +10,7 @@
 #include "MULES.H"
 #include "subCycle.H"
 #include "upwind.H"
+#include "localMax.H"
 #include "fvcGrad.H"
 #include "fvcFlux.H"
 #include "fvcSnGrad.H"
@@ -285,8 +286,33 @@ void Foam::granularMixture::relativeFluxes
     for (label k = 0; k < segregation_.size(); ++k)
     {
         const segregationVelocity& law = segregation_[k];
-        pairs.append(labelPair(1 + law.small(), 1 + law.large()));
-        phirs.append(new surfaceScalarField(fvc::interpolate(f_[k])*gSf));
+        const label i = 1 + law.small();
+        const label j = 1 + law.large();
+        pairs.append(labelPair(i, j));
+        if (law.type() == "constant")
+        {
+            phirs.append(new surfaceScalarField(fvc::interpolate(f_[k])*gSf));
+            continue;
+        }
+
+        // f of a law that depends on the state is a property of the pair's
+        // grains: on a face it is their fraction-weighted mean of the two
+        // cells' values.  A plain mean would carry into the grains at the
+        // free surface the f of the air cell above, where p = pMin and
+        // Trewhela's (3.9) with C = 0 gives 1e7 m/s.
+        const volScalarField aij(alphas_[i] + alphas_[j]);
+        const surfaceScalarField aijf(fvc::interpolate(aij));
+        phirs.append
+        (
+            new surfaceScalarField
+            (
+                (
+                    pos(aijf - SMALL)*fvc::interpolate(aij*f_[k])
+                   /max(aijf, dimensionedScalar("small", dimless, SMALL))
+                  + neg0(aijf - SMALL)*fvc::interpolate(f_[k])
+                )*gSf
+            )
+        );
     }
 
     // Air with each grain phase
@@ -403,7 +429,29 @@ void Foam::granularMixture::solveAlphas()
         );
         alphaPhis[pairs[k].first()] += F;
         alphaPhis[pairs[k].second()] -= F;
-        rate = max(rate, fvc::surfaceSum(mag(phirs[k]))().primitiveField());
+
+        // The flux f phi^i phi^j moves at most at f (phi^i + phi^j): a grain
+        // pair's rate is weighted by its fractions (the larger of the two
+        // cells of a face), so a law unbounded where there are no grains,
+        // Trewhela's (3.9) with C = 0 as p -> 0, does not hold the step in
+        // the air.  The air pairs (f a constant) keep the plain bound.
+        if (k < segregation_.size())
+        {
+            const volScalarField aij(ai + aj);
+            rate = max
+            (
+                rate,
+                fvc::surfaceSum
+                (
+                    mag(phirs[k])
+                   *localMax<scalar>(mesh_).interpolate(aij)
+                )().primitiveField()
+            );
+        }
+        else
+        {
+            rate = max(rate, fvc::surfaceSum(mag(phirs[k]))().primitiveField());
+        }
     }
     segregationRate_ = 0.5*rate/mesh_.V().field();
 
