@@ -23,15 +23,12 @@ validation/results/coupling/.
 import math
 import time
 
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
+import numpy as np
+import pytest
 
-from cases import (RESULTS, edit, foam, fresh_case, last_two,  # noqa: E402
-                   profiles, run_case, write_results)
-from exact import errors, stratified, trewhela  # noqa: E402
+from cases import (RESULTS, edit, foam, fresh_case, last_two, profiles,
+                   run_case, write_results)
+from exact import errors, stratified, trewhela
 
 pytestmark = pytest.mark.validation
 

@@ -21,9 +21,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 
 from . import grayChugunov
+from . import bagnold
 from .bagnold import ZETA
 from .grayChugunov import TABLE3, peclet
 from .rheology import TABLE1, _result
@@ -117,20 +117,9 @@ def inertial_number_root(fractions, laws, zeta=FIG7.zeta):
     if len(fractions) != len(laws) or abs(sum(fractions) - 1.0) > 1e-12 \
             or min(fractions) < 0.0:
         raise ValueError("need one fraction >= 0 per law, summing to 1")
-    t = math.tan(zeta)
-
-    def f(I):
-        return sum(v * float(law(I)) for v, law in zip(fractions, laws)) - t
-
-    if f(0.0) > 0.0:
-        raise ValueError("tan zeta is below mu(0): no steady flow")
-    hi = 1.0
-    while f(hi) <= 0.0:
-        hi *= 2.0
-        if hi > 1e12:
-            raise ValueError("tan zeta is not reached by the friction laws")
-    return brentq(f, 0.0, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps,
-                  maxiter=500)
+    return bagnold.inertial_number_zeta_root(
+        zeta, None,
+        lambda I, _: sum(v * float(law(I)) for v, law in zip(fractions, laws)))
 
 
 def _check_depth(z, h):
@@ -138,6 +127,20 @@ def _check_depth(z, h):
     if np.any(z < 0.0) or np.any(z > h):
         raise ValueError("the solution holds for 0 <= z <= h only")
     return z
+
+
+def integrate_from_base(rhs, z, rtol, atol):
+    """u at the heights z (an array, any order) of du/dz = rhs(z, u) with
+    no slip u(0) = 0, by solve_ivp (DOP853): the velocity ODEs (6.5) and
+    (6.14)."""
+    zs, back = np.unique(z.ravel(), return_inverse=True)
+    if zs[-1] == 0.0:
+        return _result(np.zeros_like(z))
+    sol = solve_ivp(rhs, (0.0, zs[-1]), [0.0], method="DOP853", t_eval=zs,
+                    rtol=rtol, atol=atol)
+    if not sol.success:
+        raise RuntimeError(sol.message)
+    return _result(sol.y[0][back].reshape(z.shape))
 
 
 def velocity(z, phi=composition, h=FIG7.h, zeta=FIG7.zeta, small=SMALL,
@@ -154,14 +157,7 @@ def velocity(z, phi=composition, h=FIG7.h, zeta=FIG7.zeta, small=SMALL,
                 / mean_diameter(zz, phi, small, large)
                 * scale * math.sqrt(max(h - zz, 0.0))]
 
-    zs, back = np.unique(z.ravel(), return_inverse=True)
-    if zs[-1] == 0.0:
-        return _result(np.zeros_like(z))
-    sol = solve_ivp(rhs, (0.0, zs[-1]), [0.0], method="DOP853", t_eval=zs,
-                    rtol=rtol, atol=1e-16)
-    if not sol.success:
-        raise RuntimeError(sol.message)
-    return _result(sol.y[0][back].reshape(z.shape))
+    return integrate_from_base(rhs, z, rtol, atol=1e-16)
 
 
 def velocity_uniform(z, phi, h=FIG7.h, zeta=FIG7.zeta, small=SMALL,

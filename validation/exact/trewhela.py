@@ -36,6 +36,7 @@ from scipy.optimize import brentq
 from scipy.special import expit
 
 from .rheology import _result
+from .stratified import integrate_from_base
 
 
 @dataclass(frozen=True)
@@ -327,14 +328,7 @@ def velocity_hat(zhat_, phi, p=DEM, rtol=1e-11):
         return [scale * math.sqrt(max(p.hhat - zz, 0.0))
                 / (v + p.R * (1.0 - v))]
 
-    zs, back = np.unique(z.ravel(), return_inverse=True)
-    if zs[-1] == 0.0:
-        return _result(np.zeros_like(z))
-    sol = solve_ivp(rhs, (0.0, zs[-1]), [0.0], method="DOP853", t_eval=zs,
-                    rtol=rtol, atol=1e-14)
-    if not sol.success:
-        raise RuntimeError(sol.message)
-    return _result(sol.y[0][back].reshape(z.shape))
+    return integrate_from_base(rhs, z, rtol, atol=1e-14)
 
 
 PHIBARS = (0.0, 0.3, 0.5, 0.7, 1.0)   # the five cases of figure 9
