@@ -52,7 +52,7 @@ def measure(case, time_name):
     # base give way to the large-rich front (base phi^s falls through 1/2)
     wave = np.nonzero((phi[0] < 0.5) & ~np.ma.getmaskarray(phi[0]))[0]
     top = np.maximum(np.sum(a < chute.GRAINS, axis=0) - 1, 0)
-    surface_phi = np.array([phi[top[j], j] for j in range(x.size)])
+    surface_phi = phi.filled(np.nan)[top, np.arange(x.size)]
     return {
         "t": float(time_name), "front": front,
         "head": float(hs[k_head]) if head.any() else float("nan"),
