@@ -201,13 +201,21 @@ def figure7(path, solver_I=None, solver_u=None, n=400):
             ax.plot(np.asarray(pts[1]), 1e3 * np.asarray(pts[0]), "o", ms=3,
                     mfc="none", color="0.3", label="solver")
     a.set_xlabel("$I$")
-    a.set_ylabel("$z$ (mm)")
-    b.set_xlabel("$u$ (m/s)")
+    a.set_ylim(0.0, 1e3 * h)
+    return finish_figure(fig, a, b, "$z$ (mm)", "$u$ (m/s)", "lower right",
+                         path)
+
+
+def finish_figure(fig, a, b, ylabel, xlabel_b, legend_loc, path):
+    """Labels, titles (a), (b), legend and the file of a two-panel profile
+    figure (figures 7 and 9); returns path."""
+    import matplotlib.pyplot as plt
+    a.set_ylabel(ylabel)
+    b.set_xlabel(xlabel_b)
     a.set_title("(a)")
     b.set_title("(b)")
-    a.set_ylim(0.0, 1e3 * h)
     b.set_xlim(left=0.0)
-    b.legend(loc="lower right", fontsize=8)
+    b.legend(loc=legend_loc, fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)

@@ -36,7 +36,7 @@ from scipy.optimize import brentq
 from scipy.special import expit
 
 from .rheology import _result
-from .stratified import integrate_from_base
+from .stratified import finish_figure, integrate_from_base
 
 
 @dataclass(frozen=True)
@@ -360,15 +360,7 @@ def figure9(path, phibars=PHIBARS, C=0.0, solver_phi=None, solver_u=None,
                         np.asarray(pts[phibar][0]), "o", ms=3, mfc="none",
                         color=col)
     a.set_xlabel(r"$\varphi^s$")
-    a.set_ylabel(r"$\hat z$")
-    b.set_xlabel(r"$\hat u$")
-    a.set_title("(a)")
-    b.set_title("(b)")
     a.set_xlim(-0.02, 1.02)     # the pure phases lie on 0 and 1
     a.set_ylim(0.0, p.hhat)
-    b.set_xlim(left=0.0)
-    b.legend(loc="upper left", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return path
+    return finish_figure(fig, a, b, r"$\hat z$", r"$\hat u$", "upper left",
+                         path)

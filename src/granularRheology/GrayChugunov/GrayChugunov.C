@@ -22,17 +22,17 @@ Foam::GrayChugunov::GrayChugunov
 )
 :
     h_(h),
+    phibar_(dict.get<scalar>("phibar")),
     Pe_(0),
     logA_(0),
     small_(0),
     large_(1)
 {
-    const scalar phibar = dict.get<scalar>("phibar");
-    if (!(phibar > 0 && phibar < 1))
+    if (!(phibar_ > 0 && phibar_ < 1))
     {
         granularInput::invalid
         (
-            dict, "phibar", phibar,
+            dict, "phibar", phibar_,
             "the depth-averaged small-grain fraction of (5.10), in (0, 1)"
         );
     }
@@ -93,9 +93,9 @@ Foam::GrayChugunov::GrayChugunov
 
     // log of (5.11), without overflow or cancellation
     logA_ =
-        -Pe_*phibar
-      + std::log1p(-std::exp(-Pe_*(1 - phibar)))
-      - std::log(-std::expm1(-Pe_*phibar));
+        -Pe_*phibar_
+      + std::log1p(-std::exp(-Pe_*(1 - phibar_)))
+      - std::log(-std::expm1(-Pe_*phibar_));
 }
 
 

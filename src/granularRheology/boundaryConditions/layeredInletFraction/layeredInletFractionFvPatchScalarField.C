@@ -59,7 +59,6 @@ void Foam::layeredInletFractionFvPatchScalarField::readBelow
             << " needs a grain phase of " << rheology.dict().name() << ": "
             << rheology.names() << ")" << nl << exit(FatalIOError);
     }
-    phibar_ = dict.get<scalar>("phibar");
 
     const vector g(meshObjects::gravity::New(db().time()).value());
     const vector n(plane_.normal()/mag(plane_.normal()));
@@ -108,7 +107,6 @@ layeredInletFractionFvPatchScalarField
     above_(0),
     plane_(),
     composition_(),
-    phibar_(0),
     phase_(),
     grain_(-1)
 {}
@@ -128,7 +126,6 @@ layeredInletFractionFvPatchScalarField
     above_(readFraction(dict, "above")),
     plane_(dict),
     composition_(),
-    phibar_(0),
     phase_(),
     grain_(-1)
 {
@@ -164,7 +161,6 @@ layeredInletFractionFvPatchScalarField
     (
         ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
     ),
-    phibar_(ptf.phibar_),
     phase_(ptf.phase_),
     grain_(ptf.grain_)
 {}
@@ -185,7 +181,6 @@ layeredInletFractionFvPatchScalarField
     (
         ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
     ),
-    phibar_(ptf.phibar_),
     phase_(ptf.phase_),
     grain_(ptf.grain_)
 {}
@@ -207,7 +202,6 @@ layeredInletFractionFvPatchScalarField
     (
         ptf.composition_.valid() ? new GrayChugunov(*ptf.composition_) : nullptr
     ),
-    phibar_(ptf.phibar_),
     phase_(ptf.phase_),
     grain_(ptf.grain_)
 {}
@@ -236,7 +230,7 @@ void Foam::layeredInletFractionFvPatchScalarField::write(Ostream& os) const
     if (composition_.valid())
     {
         os.writeEntry("below", word("stratified"));
-        os.writeEntry("phibar", phibar_);
+        os.writeEntry("phibar", composition_->phibar());
         os.writeEntry("phase", phase_);
     }
     else
