@@ -24,7 +24,9 @@ Description
     corrector re-evaluates the rheology from the latest U and p.
 
     The time step follows the CFL (4.11) with its viscous part, plus the
-    segregation and diffusion rates; each part is logged every step.  With
+    segregation and diffusion rates; each part is logged every step.  At
+    every write the log shows the volume of every phase and a segregation
+    index, and an estimate of the wall time to finish (also once a minute).  With
     fvSolution PIMPLE { momentumPredictor yes; viscousStress implicit; }
     the stress is solved implicitly in the momentum predictor and the
     viscous part no longer limits the step (see granularMixture.H).
@@ -83,6 +85,9 @@ int main(int argc, char *argv[])
     }
 
     const surfaceScalarField& rhoPhi(mixture.rhoPhi());
+
+    #include "createProgress.H"
+    mixture.report();
 
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -163,6 +168,8 @@ int main(int argc, char *argv[])
         mixture.checkFinite(U, p);
 
         runTime.write();
+
+        #include "reportProgress.H"
 
         runTime.printExecutionTime(Info);
     }

@@ -995,6 +995,61 @@ void Foam::granularMixture::checkFinite
 }
 
 
+Foam::scalar Foam::granularMixture::segregationIndex() const
+{
+    const label nGrains = alphas_.size() - 1;
+    if (nGrains < 2)
+    {
+        return -1;
+    }
+
+    // Grain volume of each cell, the weight of the means
+    scalarField alphaG(mesh_.nCells(), Zero);
+    for (label i = 1; i < alphas_.size(); ++i)
+    {
+        alphaG += alphas_[i].primitiveField();
+    }
+    const scalarField w(mesh_.V().field()*alphaG);
+    const scalar W = gSum(w);
+    if (W <= VSMALL)
+    {
+        return -1;
+    }
+
+    // Cells with no grains carry no weight; keep c finite there
+    const scalarField alphaGSafe(max(alphaG, SMALL));
+    scalar variance = 0;
+    scalar mixed = 0;
+    for (label i = 1; i < alphas_.size(); ++i)
+    {
+        const scalarField c(alphas_[i].primitiveField()/alphaGSafe);
+        const scalar cMean = gSum(w*c)/W;
+        variance += gSum(w*sqr(c - cMean))/W;
+        mixed += cMean*(1 - cMean);
+    }
+
+    return mixed > SMALL ? Foam::sqrt(variance/mixed) : 0;
+}
+
+
+void Foam::granularMixture::report() const
+{
+    Info<< "Phase volumes:";
+    for (const volScalarField& alpha : alphas_)
+    {
+        Info<< ' ' << alpha.name() << " = "
+            << gSum(mesh_.V().field()*alpha.primitiveField());
+    }
+    Info<< nl;
+
+    const scalar S = segregationIndex();
+    if (S >= 0)
+    {
+        Info<< "Segregation index (0 mixed, 1 segregated) = " << S << nl;
+    }
+}
+
+
 void Foam::granularMixture::solve()
 {
     const Time& runTime = mesh_.time();
