@@ -3,9 +3,11 @@
 A missing OpenFOAM environment, a program that did not run or a missing
 output file is a failure here, never a skip.
 """
+import json
 import os
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
@@ -50,3 +52,79 @@ def case_copy(tmp_path):
         shutil.copytree(src, dst)
         return dst
     return copy
+
+
+# ---------------------------------------------------------------------------
+# Measured numbers and the validation status table
+#
+# A test states a measured number against its tolerance through the `check`
+# fixture, which asserts it and records it; at the end of a session every
+# test's outcome, time and checks are merged into STATUS (keyed by test, so
+# a partial run updates only its own tests), from which validation/status.py
+# writes the README's status table.
+
+STATUS = PROJECT / "validation" / "results" / "status.json"
+
+
+@pytest.fixture
+def check(request):
+    """check(label, measured, tolerance, paper=None, percent=False):
+    assert measured < tolerance (numbers, e.g. a relative L2 error) and
+    record the pair, with the paper's figure or equation, for the status
+    table (shown in % with percent)."""
+    def _check(label, measured, tolerance, paper=None, percent=False):
+        measured, tolerance = float(measured), float(tolerance)
+        request.node.user_properties.append(
+            ("check", {"label": label, "measured": measured,
+                       "tolerance": tolerance, "paper": paper,
+                       "percent": percent,
+                       "passed": bool(measured < tolerance)}))
+        assert measured < tolerance, (
+            f"{label}: measured {measured:.4g}, tolerance {tolerance:.4g}")
+    return _check
+
+
+_OUTCOMES = {}
+
+
+def pytest_runtest_logreport(report):
+    """Keep the outcome of every test: failed in any phase, else passed."""
+    entry = _OUTCOMES.setdefault(report.nodeid, {"checks": []})
+    if report.when == "setup":
+        entry.update(outcome="passed", seconds=0.0)
+    entry["seconds"] += report.duration
+    if report.failed:
+        entry["outcome"] = "failed"
+    elif report.skipped:
+        entry["outcome"] = "skipped"
+    if report.when == "call":
+        entry["checks"] = [v for k, v in report.user_properties
+                           if k == "check"]
+
+
+def pytest_collection_modifyitems(items):
+    """The first line of each test's docstring, for the status table."""
+    for item in items:
+        doc = getattr(item.function, "__doc__", None) or ""
+        _OUTCOMES.setdefault(item.nodeid, {
+            "outcome": "not run", "seconds": 0.0, "checks": []})["doc"] = (
+                doc.strip().splitlines()[0] if doc.strip() else "")
+
+
+def pytest_sessionfinish(session):
+    """Merge this session's outcomes into STATUS."""
+    ran = {k: v for k, v in _OUTCOMES.items() if v["outcome"] != "not run"}
+    if not ran:
+        return
+    commit = run(["git", "rev-parse", "--short=12", "HEAD"], PROJECT)
+    dirty = run(["git", "status", "--porcelain", "--untracked-files=no"],
+                PROJECT)
+    stamp = {"commit": (commit.stdout.strip() if commit.returncode == 0
+                        else "unknown")
+             + ("+changes" if dirty.stdout.strip() else ""),
+             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+    old = json.loads(STATUS.read_text()) if STATUS.is_file() else {}
+    for nodeid, entry in ran.items():
+        old[nodeid] = dict(entry, **stamp)
+    STATUS.parent.mkdir(parents=True, exist_ok=True)
+    STATUS.write_text(json.dumps(old, indent=1, sort_keys=True) + "\n")
