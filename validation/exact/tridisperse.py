@@ -80,6 +80,19 @@ class Column:
 
 COLUMN = Column()
 NAMES = ("small", "medium", "large")
+PAIRS = {(0, 1): "SmallMedium", (1, 2): "MediumLarge", (0, 2): "SmallLarge"}
+# the entries of tridisperseParameters that from_parameters reads
+KEYS = ("ds", "dm", "dl", "h", "phiSmall", "phiMedium", "phiLarge") + tuple(
+    k + v for v in PAIRS.values() for k in ("f", "D"))
+
+
+def from_parameters(v, zeta=COLUMN.zeta):
+    """(Column, phibar) from the values {key: float} of KEYS in
+    tridisperseParameters (the slope is constant/g's, 25 degrees)."""
+    c = Column(d=(v["ds"], v["dm"], v["dl"]), h=v["h"], zeta=zeta,
+               f=tuple((ij, v["f" + s]) for ij, s in PAIRS.items()),
+               D=tuple((ij, v["D" + s]) for ij, s in PAIRS.items()))
+    return c, np.array([v["phiSmall"], v["phiMedium"], v["phiLarge"]])
 
 
 def pair_matrices(c=COLUMN):
@@ -161,17 +174,27 @@ def steady_profiles(phibar, c=COLUMN, zhat=None, tol=1e-10):
     Dp, Wp, target = D[np.ix_(present, present)], W[np.ix_(present, present)], \
         phibar[present]
 
-    def residual(x):
-        psi0 = np.append(x, 0.0)
-        sol = _shoot(psi0, Dp, Wp)
-        return sol.y[len(psi0):-1, -1] - target[:-1]
+    # the unknowns are psi(0) shifted by the uniform mix's log fractions
+    # and by 1, so that the finite-difference Jacobian of root (steps
+    # relative to |x|) is taken with steps of order 1e-8 and not of the
+    # order of the round-off of log(phibar)
+    guess = np.log(target[:-1] / target[-1]) - 1.0
 
-    guess = np.log(target[:-1] / target[-1])
-    res = root(residual, guess, method="hybr", options={"xtol": 1e-13})
+    def residual(x):
+        sol = _shoot(np.append(x + guess, 0.0), Dp, Wp)
+        return sol.y[present.size:-1, -1] - target[:-1]
+
+    # hybr, Powell's, first; Levenberg-Marquardt where it stalls (strongly
+    # unequal mixes, e.g. phibar = (0.01, 0.98, 0.01))
+    for method in ("hybr", "lm"):
+        res = root(residual, np.ones(present.size - 1), method=method,
+                   options={"xtol": 1e-13})
+        if res.success and np.max(np.abs(res.fun)) <= tol:
+            break
     if not res.success or np.max(np.abs(res.fun)) > tol:
         raise RuntimeError(f"shooting did not converge: {res.message}, "
                            f"residual {res.fun}")
-    psi0 = np.append(res.x, 0.0)
+    psi0 = np.append(res.x + guess, 0.0)
     sol = _shoot(psi0, Dp, Wp, zhat=zhat)
     out[present] = softmax(sol.y[:present.size], axis=0)
     return out
