@@ -10,6 +10,7 @@ import re
 import shutil
 import time
 
+import numpy as np
 
 from conftest import PROJECT, run
 from exact import errors
@@ -53,6 +54,16 @@ def set_entry(case, dictionary, entry, value):
          dictionary)
 
 
+def entries(case, dictionary, keys):
+    """{key: float} of foamDictionary -entry key -value on case/dictionary
+    (with 15 digits: foamDictionary prints 6 by default; the value is the
+    last word, after any warning)."""
+    return {k: float(foam_output(case, "foamDictionary", "-precision", "15",
+                                 "-entry", k, "-value",
+                                 dictionary)[0].split()[-1])
+            for k in keys}
+
+
 def run_case(case, script="./Allrun"):
     """Run the case's Allrun (or another script); seconds it took."""
     return foam(case, script)
@@ -90,6 +101,17 @@ def profiles(case, time_name, function="profile", set_name="centreline"):
             for k, name in enumerate(fields):
                 out[name] = data[:, k + 1]
     return out
+
+
+def grain_profiles(case, time_name, grains, h, function="profile"):
+    """The grains of a sampled column at a time (0 <= z < h): {'z': z,
+    'phi': (len(grains), n) fractions per unit grain volume (alpha.<name>
+    over their sum), 'u': downslope velocity}."""
+    prof = profiles(case, time_name, function)
+    inside = prof["z"] < h
+    alpha = np.array([prof["alpha." + g][inside] for g in grains])
+    return {"z": prof["z"][inside], "phi": alpha / alpha.sum(axis=0),
+            "u": prof["U"][inside, 0]}
 
 
 def volumes(case, function="volumes"):

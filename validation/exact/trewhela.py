@@ -320,13 +320,24 @@ def velocity_hat(zhat_, phi, p=DEM, rtol=1e-11):
     no slip uhat(0) = 0, integrated by solve_ivp (DOP853) to the heights
     zhat (any order).  phi is a callable phi^s(zhat) (e.g. concentration())
     or a constant; phi^s = 1 gives (6.12), phi^s = 0 gives (6.12)/R."""
+    def dbarhat(zz):
+        v = float(phi(zz)) if callable(phi) else float(phi)
+        return v + p.R * (1.0 - v)
+
+    return velocity_hat_dbar(zhat_, dbarhat, p, rtol)
+
+
+def velocity_hat_dbar(zhat_, dbarhat, p=DEM, rtol=1e-11):
+    """(6.14) for any number of grain sizes:
+    duhat/dzhat = I_zeta sqrt(Phi cos zeta) (hhat - zhat)^{1/2}/dbarhat,
+    with dbarhat(zhat) = dbar/d^s of (3.1), sum_nu phi^nu d^nu/d^s (the
+    generalised inertial number (3.2) at the constant I_zeta of (6.13)),
+    no slip uhat(0) = 0, by solve_ivp (DOP853) to the heights zhat."""
     z = _check_depth(zhat_, p)
     scale = I_zeta(p) * math.sqrt(p.Phi * math.cos(p.zeta))
 
     def rhs(zz, u):
-        v = float(phi(zz)) if callable(phi) else float(phi)
-        return [scale * math.sqrt(max(p.hhat - zz, 0.0))
-                / (v + p.R * (1.0 - v))]
+        return [scale * math.sqrt(max(p.hhat - zz, 0.0)) / dbarhat(zz)]
 
     return integrate_from_base(rhs, z, rtol, atol=1e-14)
 

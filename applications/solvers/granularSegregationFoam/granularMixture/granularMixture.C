@@ -364,6 +364,22 @@ void Foam::granularMixture::relativeFluxes
 }
 
 
+Foam::scalar Foam::granularMixture::fluxSum
+(
+    const PtrList<surfaceScalarField>& fluxes
+)
+{
+    surfaceScalarField sum(fluxes[0]);
+    scalar largest = max(mag(fluxes[0])).value();
+    for (label i = 1; i < fluxes.size(); ++i)
+    {
+        sum += fluxes[i];
+        largest = max(largest, max(mag(fluxes[i])).value());
+    }
+    return max(mag(sum)).value()/max(largest, VSMALL);
+}
+
+
 bool Foam::granularMixture::outOfBounds
 (
     const PtrList<surfaceScalarField>& corrections,
@@ -413,6 +429,21 @@ void Foam::granularMixture::solveAlphas()
         );
     }
 
+    // The relative (segregation and diffusion) flux of each phase
+    PtrList<surfaceScalarField> relPhis(nPhases);
+    forAll(alphas_, i)
+    {
+        relPhis.set
+        (
+            i,
+            new surfaceScalarField
+            (
+                "relPhi." + alphas_[i].name(),
+                0*alphaPhis[i]
+            )
+        );
+    }
+
     // (2.13): one flux per pair, +F for i and -F for j
     List<labelPair> pairs;
     PtrList<surfaceScalarField> phirs;
@@ -427,8 +458,8 @@ void Foam::granularMixture::solveAlphas()
         (
             fvc::flux(-fvc::flux(-phirs[k], aj, alpharScheme), ai, alpharScheme)
         );
-        alphaPhis[pairs[k].first()] += F;
-        alphaPhis[pairs[k].second()] -= F;
+        relPhis[pairs[k].first()] += F;
+        relPhis[pairs[k].second()] -= F;
 
         // The flux f phi^i phi^j moves at most at f (phi^i + phi^j): a grain
         // pair's rate is weighted by its fractions (the larger of the two
@@ -472,8 +503,12 @@ void Foam::granularMixture::solveAlphas()
             )
         );
         zeroUncoupled(Fd);
-        alphaPhis[i] += Fd;
-        alphaPhis[j] -= Fd;
+        relPhis[i] += Fd;
+        relPhis[j] -= Fd;
+    }
+    forAll(alphas_, i)
+    {
+        alphaPhis[i] += relPhis[i];
     }
 
     // Bound each phase, then make the corrections sum to zero.  limitSum
@@ -521,6 +556,12 @@ void Foam::granularMixture::solveAlphas()
         {
             break;
         }
+    }
+
+    if (debug)
+    {
+        Info<< "    flux sums (2.12): pairwise " << fluxSum(relPhis)
+            << " limited " << fluxSum(alphaPhis) << endl;
     }
 
     rhoPhi_ = dimensionedScalar(rhoPhi_.dimensions(), Zero);

@@ -1,0 +1,148 @@
+"""Three grain sizes (issue 9): tutorials/tridisperseColumn at 30 cells
+over h, run 30 s to its steady state, against the steady solution of
+(2.13) and (2.15) (validation/exact/tridisperse.py), for the tutorial's
+equal mix and an unequal one.
+
+Asserted for each run:
+- phi^s, phi^m, phi^l (per unit grain volume): L2 relative error against
+  the ODE < TOL_PHI = 1 % (measured 0.074 % for the equal mix,
+  0.11 % for (0.5, 0.3, 0.2));
+- u against (6.14) with dbar (3.1): L2 < TOL_U = 2 % (measured 0.64 %);
+- steady: no fraction changes by more than 1e-5 over the last 5 s;
+- each grain phase's volume conserved: |balance| of granularInvariants
+  < 1e-8 at every step (measured 1.3e-9), the air's < 1e-7 (measured
+  1.6e-8), sum phi = 1 within 1e-12 (measured 3.3e-16), no NaN;
+- zero-sum fluxes (2.12): on every face the pairwise segregation (2.13)
+  and diffusion (2.15) fluxes of all phases, air included, sum to zero
+  (max|sum_i F_i| / max|F_i| < 1e-12, measured 2.7e-16), both as assembled and after the
+  MULES limiting (the solver prints them each step with DebugSwitches
+  granularMixture 1; one line per time step is required).
+Numbers in validation/results/tridisperse/<run>.json with the figure.
+"""
+import math
+import re
+
+import numpy as np
+import pytest
+
+from cases import (RESULTS, entries, foam, fresh_case, grain_profiles,
+                   last_two, write_results)
+from exact import errors, tridisperse
+from squareDrum.post import function_table
+
+pytestmark = pytest.mark.validation
+
+OUT = RESULTS / "tridisperse"
+TOL_PHI = 0.01
+TOL_U = 0.02
+TOL_STEADY = 1e-5
+TOL_VOLUME = 1e-8
+# the air's 6e-6 m^3 takes the pressure solution's continuity error
+# (cumulative 4e-9 after 30 s): measured 1.6e-8
+TOL_VOLUME_AIR = 1e-7
+TOL_FLUX_SUM = 1e-12
+RUNS = {"equal": None, "unequal": (0.5, 0.3, 0.2)}
+PHASES = ("alpha.air",) + tuple("alpha." + n for n in tridisperse.NAMES)
+
+
+@pytest.fixture(scope="module")
+def runs(foam_env):
+    out = {}
+    for name, fractions in RUNS.items():
+        case = fresh_case("tridisperseColumn", f"tridisperse-{name}",
+                          tutorial=True)
+        args = ["-nz", "36", "-endTime", "30", "-writeInterval", "5"]
+        if fractions is not None:
+            args += ["-fractions"] + [str(x) for x in fractions]
+        seconds = foam(case, "./Allrun", *args)
+        out[name] = (case, seconds)
+    return out
+
+
+def invariants(case):
+    """{column name: array} of postProcessing/invariants."""
+    path = sorted((case / "postProcessing" / "invariants").glob(
+        "*/granularInvariants.dat"))
+    assert path, f"no granularInvariants.dat in {case}"
+    header = [line for line in path[0].read_text().splitlines()
+              if line.startswith("# Time")]
+    assert header, f"no header in {path[0]}"
+    names = re.split(r"\s*\t\s*|\s{2,}", header[0][1:].strip())
+    table = function_table(case, "invariants", "granularInvariants.dat")
+    assert table.shape[1] == len(names), (names, table.shape)
+    return {n: table[:, k] for k, n in enumerate(names)}
+
+
+def flux_sums(case):
+    """(pairwise, limited, steps) from the solver log."""
+    log = (case / "log.granularSegregationFoam").read_text()
+    sums = re.findall(r"flux sums \(2\.12\): pairwise (\S+) limited (\S+)",
+                      log)
+    steps = len(re.findall(r"^Time = ", log, flags=re.M))
+    return (np.array([float(a) for a, _ in sums]),
+            np.array([float(b) for _, b in sums]), steps)
+
+
+@pytest.mark.parametrize("name", list(RUNS))
+def test_tridisperse_column(runs, name):
+    case, seconds = runs[name]
+    column, phibar = tridisperse.from_parameters(
+        entries(case, "system/tridisperseParameters", tridisperse.KEYS))
+    if RUNS[name] is not None:
+        assert np.allclose(phibar, RUNS[name], rtol=0, atol=1e-12)
+    t_prev, t_end = last_two(case)
+    prev = grain_profiles(case, t_prev, tridisperse.NAMES, column.h)
+    last = grain_profiles(case, t_end, tridisperse.NAMES, column.h)
+    zhat = last["z"] / column.h
+
+    exact = tridisperse.steady_profiles(phibar, column, zhat)
+    l2_phi = [errors.l2_relative(last["phi"][k], exact[k]) for k in range(3)]
+    u_exact = tridisperse.velocity_hat(zhat, phibar, column) \
+        * math.sqrt(9.81 * column.d[0])
+    l2_u = errors.l2_relative(last["u"], u_exact)
+    change = float(np.abs(last["phi"] - prev["phi"]).max())
+
+    inv = invariants(case)
+    balance = {p: float(np.abs(inv[f"balance({p})"]).max()) for p in PHASES}
+    sum_error = float(inv["max|sum-1|"].max())
+    non_finite = int(inv["nonFinite"].max())
+    pairwise, limited, steps = flux_sums(case)
+
+    numbers = {
+        "fractions": phibar.tolist(), "end_time": float(t_end),
+        "cells_over_h": int(zhat.size), "solver_seconds": seconds,
+        "l2_phi": dict(zip(tridisperse.NAMES, l2_phi)),
+        "tolerance_phi": TOL_PHI, "l2_u": l2_u, "tolerance_u": TOL_U,
+        "max_change_phi_last_interval": change,
+        "volume_balance_max": balance, "tolerance_volume": TOL_VOLUME,
+        "max_sum_minus_1": sum_error,
+        "flux_sum_pairwise_max": float(pairwise.max()) if pairwise.size
+        else None,
+        "flux_sum_limited_max": float(limited.max()) if limited.size
+        else None,
+        "time_steps": steps, "flux_sum_lines": int(pairwise.size),
+        "z": last["z"].tolist(), "phi": last["phi"].tolist(),
+        "u": last["u"].tolist(), "phi_exact": exact.tolist(),
+        "u_exact": u_exact.tolist(),
+    }
+    OUT.mkdir(parents=True, exist_ok=True)
+    write_results(OUT, f"tridisperse-{name}", numbers)
+    figure = tridisperse.figure(OUT / f"tridisperse-{name}.png", phibar,
+                                column, last)
+
+    assert figure.stat().st_size > 10000
+    assert (case / "figures" / "tridisperseColumn.png").is_file(), \
+        "Allrun's plot step wrote no figure"
+    assert steps > 100 and pairwise.size == steps == limited.size, (
+        f"{pairwise.size} flux-sum lines for {steps} time steps")
+    assert pairwise.max() < TOL_FLUX_SUM, f"pairwise sum {pairwise.max()}"
+    assert limited.max() < TOL_FLUX_SUM, f"limited sum {limited.max()}"
+    assert non_finite == 0
+    assert sum_error < 1e-12, f"max|sum phi - 1| = {sum_error}"
+    for p, b in balance.items():
+        tol = TOL_VOLUME_AIR if p == "alpha.air" else TOL_VOLUME
+        assert b < tol, f"{p}: volume balance {b}"
+    assert change < TOL_STEADY, f"not steady: phi changed by {change}"
+    for n, e in zip(tridisperse.NAMES, l2_phi):
+        assert e < TOL_PHI, f"phi^{n}: L2 {e:.3%}"
+    assert l2_u < TOL_U, f"u: L2 {l2_u:.3%}"
