@@ -84,7 +84,7 @@ def flux_sums(case):
 
 
 @pytest.mark.parametrize("name", list(RUNS))
-def test_tridisperse_column(runs, name):
+def test_tridisperse_column(runs, name, check):
     case, seconds = runs[name]
     column, phibar = tridisperse.from_parameters(
         entries(case, "system/tridisperseParameters", tridisperse.KEYS))
@@ -135,8 +135,10 @@ def test_tridisperse_column(runs, name):
         "Allrun's plot step wrote no figure"
     assert steps > 100 and pairwise.size == steps == limited.size, (
         f"{pairwise.size} flux-sum lines for {steps} time steps")
-    assert pairwise.max() < TOL_FLUX_SUM, f"pairwise sum {pairwise.max()}"
-    assert limited.max() < TOL_FLUX_SUM, f"limited sum {limited.max()}"
+    check(f"tridisperse {name}: max |sum of pairwise fluxes| (relative)",
+          pairwise.max(), TOL_FLUX_SUM, "(2.12)")
+    check(f"tridisperse {name}: max |sum of limited fluxes| (relative)",
+          limited.max(), TOL_FLUX_SUM, "(2.12)")
     assert non_finite == 0
     assert sum_error < 1e-12, f"max|sum phi - 1| = {sum_error}"
     for p, b in balance.items():
@@ -144,5 +146,7 @@ def test_tridisperse_column(runs, name):
         assert b < tol, f"{p}: volume balance {b}"
     assert change < TOL_STEADY, f"not steady: phi changed by {change}"
     for n, e in zip(tridisperse.NAMES, l2_phi):
-        assert e < TOL_PHI, f"phi^{n}: L2 {e:.3%}"
-    assert l2_u < TOL_U, f"u: L2 {l2_u:.3%}"
+        check(f"tridisperse {name}: φ^{n} vs the steady ODE, L2", e, TOL_PHI,
+              "(2.13), (2.15)", percent=True)
+    check(f"tridisperse {name}: u vs (6.14) with d̄, L2", l2_u, TOL_U,
+          "(6.14)", percent=True)
