@@ -16,7 +16,7 @@ def test_table_counts_and_checks():
     ok = {"label": "u vs Bagnold, L2", "measured": 0.00096,
           "tolerance": 0.01, "paper": "(5.4)", "percent": True,
           "passed": True}
-    bad = {"label": "drift", "measured": 2e-12, "tolerance": 1e-12,
+    bad = {"label": "max |drift|", "measured": 2e-12, "tolerance": 1e-12,
            "paper": None, "percent": False, "passed": False}
     text = status.table({
         "a/test_x.py::test_one": entry("passed", [ok]),
@@ -27,5 +27,5 @@ def test_table_counts_and_checks():
     assert "| `test_y.py` | 1 | 0 | 3 |" in text
     assert "| all | 2 | 1 | 7 |" in text
     assert "| u vs Bagnold, L2 | 0.096 % | < 1 % | (5.4) | pass |" in text
-    assert "| drift | 2e-12 | < 1e-12 |  | FAIL |" in text
+    assert "| max \\|drift\\| | 2e-12 | < 1e-12 |  | FAIL |" in text
     assert "`abc`, `def`" in text
