@@ -137,3 +137,15 @@ def test_open_volume_balance(foam_env):
     balance = np.abs(a[:, 1:10:3])
     assert balance.max() < 1e-10, balance.max(axis=0)
     assert np.all(a[:, 11] == 0)
+
+
+def test_pictures(short):
+    """Allrun leaves the field pictures of its last time, one polygon per
+    cell of the chute."""
+    par = post.parameters(short)
+    png = short / "figures" / f"fields_{float(STEPS_END):g}.png"
+    assert png.is_file(), f"Allrun left no {png}"
+    assert png.stat().st_size > 20000
+    log = (short / "log.granularPictures").read_text()
+    cells = int(par["nx"]) * int(par["nz"])
+    assert f"{png.name}: {cells} cells" in log, log
