@@ -16,6 +16,7 @@ from conftest import PROJECT, run
 from exact import errors
 
 RESULTS = PROJECT / "validation" / "results"
+NUMBER = r"[-+0-9.eE]+"
 
 
 def fresh_case(name, dest=None, tutorial=False):
@@ -176,3 +177,21 @@ def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
     foam(case, "blockMesh")
     foam(case, "setGranularFields")
     return case
+
+
+def log_reports(log):
+    """The solver's progress reports (granularMixture::report) in its log:
+    {time name: [volumes {phase: V}, segregation index]}; the first report
+    is at the start time, the others follow their "Time = " line."""
+    out, time_name = {}, "0"
+    for line in log.splitlines():
+        m = re.match(r"^Time = (\S+)$", line)
+        if m:
+            time_name = m.group(1)
+        if line.startswith("Phase volumes:"):
+            vols = dict(re.findall(rf"(alpha\.\w+) = ({NUMBER})", line))
+            out[time_name] = [{k: float(v) for k, v in vols.items()}, None]
+        m = re.match(rf"^Segregation index \(.*\) = ({NUMBER})$", line)
+        if m:
+            out[time_name][1] = float(m.group(1))
+    return out

@@ -7,31 +7,12 @@ import re
 import numpy as np
 import pytest
 
-from cases import foam, fresh_case
+from cases import foam, fresh_case, log_reports
 from chute.post import read_field
 
 pytestmark = pytest.mark.smoke
 
 PHASES = ("alpha.air", "alpha.small", "alpha.large")
-NUMBER = r"[-+0-9.eE]+"
-
-
-def reports(log):
-    """{time name: (volumes {phase: V}, segregation index)} from the log:
-    the first report is at the start time, the others follow their
-    "Time = " line."""
-    out, time_name = {}, "0"
-    for line in log.splitlines():
-        m = re.match(r"^Time = (\S+)$", line)
-        if m:
-            time_name = m.group(1)
-        if line.startswith("Phase volumes:"):
-            vols = dict(re.findall(rf"(alpha\.\w+) = ({NUMBER})", line))
-            out[time_name] = [{k: float(v) for k, v in vols.items()}, None]
-        m = re.match(rf"^Segregation index \(.*\) = ({NUMBER})$", line)
-        if m:
-            out[time_name][1] = float(m.group(1))
-    return out
 
 
 def segregation_index(alphas, V):
@@ -50,7 +31,7 @@ def test_progress_report(foam_env):
     foam(case, "./Allrun", "-endTime", "4", "-writeInterval", "2")
     log = (case / "log.granularSegregationFoam").read_text()
 
-    found = reports(log)
+    found = log_reports(log)
     assert sorted(found, key=float) == ["0", "2", "4"], (
         f"reports at times {list(found)}, expected the start and two writes")
 
