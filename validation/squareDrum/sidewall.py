@@ -14,7 +14,9 @@ At every written time from --from on (the steady avalanche regime):
   figure 10); the creep speed of the body 5 cm below the surface;
 - the segregated core: the area of the grains (phi^a < 1/2) that are
   small-rich, phi^s = alpha.small/(alpha.small + alpha.large) > 0.75
-  (and > 0.6), and the area still mixed, |phi^s - 1/2| < 0.05;
+  (and > 0.6), the area still mixed, |phi^s - 1/2| < 0.05, and of that the
+  central core of section 7.2: the connected mixed region (cells sharing
+  a face) that holds the cell nearest the axis;
 - the surface inclination and the peak relative speed (the monitor).
 
     /usr/bin/python3 validation/squareDrum/sidewall.py NOWALL WALL \\
@@ -38,6 +40,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from scipy.interpolate import LinearNDInterpolator  # noqa: E402
+from scipy.ndimage import label  # noqa: E402
 
 from chute.post import time_names  # noqa: E402
 from squareDrum.post import (I1, _drum_axes, _save, centres,  # noqa: E402
@@ -96,19 +99,25 @@ def state(case, name, angle_deg):
     creep = np.nonzero(Ib < I1)[0]
     assert creep.size, f"{case}/{name}: I > I_1 on the whole line"
 
+    mixed = grains & (np.abs(phis - 0.5) < MIXED)
+    regions, _ = label(mixed)
+    axis = np.unravel_index(np.argmin(np.hypot(xc, yc)), xc.shape)
+    core = (regions == regions[axis]) & mixed[axis]
+
     out = {"t": float(name), "surface_angle_deg": angle_deg,
            "surface_distance_from_axis": float(s_surf),
            "midline_peak_speed": peak, "flowing_depth": float(delta),
            "depth_I_above_I1": float(depth[creep[0]]),
            "creep_speed": float(np.interp(CREEP_DEPTH, depth, ub)),
-           "mixed_core_area": float(area * np.sum(
-               grains & (np.abs(phis - 0.5) < MIXED))),
+           "mixed_area": float(area * mixed.sum()),
+           "central_core_area": float(area * core.sum()),
            "grain_area": float(area * grains.sum())}
     for r in RICH:
         out[f"small_rich_area_{r:g}"] = float(area * np.sum(
             grains & (phis > r)))
     profile = {"depth": depth, "speed": ub}
     maps = {"X": X, "Y": Y, "phis": np.where(grains, phis, np.nan),
+            "core": core,
             "line": (s_surf, n)}
     return out, profile, maps
 
@@ -135,7 +144,8 @@ def summary(rows, case, t_from):
     out.update({f"{k}_range": [float(min(r[k] for r in rows)),
                                float(max(r[k] for r in rows))]
                 for k in ("flowing_depth", "depth_I_above_I1",
-                          "small_rich_area_0.75", "mixed_core_area")})
+                          "small_rich_area_0.75", "mixed_area",
+                          "central_core_area")})
     out["monitor_surface_angle_mean_deg"] = float(np.nanmean(m["angle"][late]))
     out["monitor_peak_speed_mean"] = float(np.mean(m["peak"][late]))
     out["times"] = len(rows)
@@ -158,31 +168,36 @@ def figure(results, out):
     ax.set_title(f"t = {rows[-1]['t']:g} s (dotted: mean depth, "
                  f"{FRACTION:g} of the peak)", fontsize=8)
     ax.legend(fontsize=7)
-    for i, key, label in ((2, "flowing_depth", "flowing depth [cm]"),
-                          (3, "small_rich_area_0.75",
-                           r"area $\varphi^s > 0.75$ [cm$^2$]")):
+    for i, keys, label in (
+            (2, ("flowing_depth", "depth_I_above_I1"), "depth [cm]"),
+            (3, ("small_rich_area_0.75", "central_core_area"),
+             r"area [cm$^2$]")):
         ax = fig.add_subplot(2, 3, i)
         for name, (rows, _, _, _) in results.items():
-            ax.plot([r["t"] for r in rows], [r[key] * 1e4 if "area" in key
-                                             else r[key] * 100
-                                             for r in rows], "o-", ms=3,
-                    label=name)
+            for key, style in zip(keys, ("o-", "s--")):
+                scale = 1e4 if "area" in key else 100
+                ax.plot([r["t"] for r in rows], [r[key] * scale for r in rows],
+                        style, ms=2, label=f"{name}: {key}")
         ax.set_xlabel("t [s]")
         ax.set_ylabel(label)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=6)
     for i, (name, (rows, _, maps, _)) in enumerate(results.items()):
         ax = fig.add_subplot(2, 3, 4 + i)
         pc = ax.pcolormesh(maps["X"], maps["Y"], maps["phis"],
                            cmap="viridis", vmin=0, vmax=1, shading="flat")
         xc, yc = centres(maps["X"], maps["Y"])
-        ax.contour(xc, yc, np.nan_to_num(maps["phis"], nan=0.0), [RICH[0]],
-                   colors="w", linewidths=0.8)
+        for field, level, colour in (
+                (np.nan_to_num(maps["phis"], nan=0.0), RICH[0], "w"),
+                (maps["core"] * 1.0, 0.5, "r")):
+            if field.min() < level < field.max():
+                ax.contour(xc, yc, field, [level], colors=colour,
+                           linewidths=0.8)
         s_surf, n = maps["line"]
         ax.plot([0, s_surf * n[0]], [0, s_surf * n[1]], "r-", lw=0.8)
         _drum_axes(ax, maps["X"], maps["Y"])
         ax.set_title(f"{name}, t = {rows[-1]['t']:g} s", fontsize=8)
-    fig.colorbar(pc, ax=fig.axes[3:], shrink=0.7, label=r"$\varphi^s$ "
-                 "(white: 0.75; red: the mid-line)")
+    fig.colorbar(pc, ax=fig.axes[3:], shrink=0.7,
+                 label=r"$\varphi^s$ (white 0.75, red core)")
     _save(fig, out)
 
 
