@@ -15,7 +15,7 @@ At every written time from --from on (the steady avalanche regime):
 - the segregated core: the area of the grains (phi^a < 1/2) that are
   small-rich, phi^s = alpha.small/(alpha.small + alpha.large) > 0.75
   (and > 0.6), the area still mixed, |phi^s - 1/2| < 0.05, and of that the
-  central core of section 7.2: the connected mixed region (cells sharing
+  central core of section 7.3: the connected mixed region (cells sharing
   a face) that holds the cell nearest the axis;
 - the surface inclination and the peak relative speed (the monitor).
 
