@@ -157,6 +157,26 @@ def set_decomposition(case, method):
          [(r"\nmethod\s+\w+;", f"\nmethod          {method};")])
 
 
+SIDEWALL = PROJECT / "tutorials" / "squareDrum" / "constant" / "fvOptions.sidewall"
+
+
+def sidewall_friction(case, **entries):
+    """Give case the sidewall friction: constant/fvOptions from the drum's
+    constant/fvOptions.sidewall (the one example of granularSidewallFriction,
+    as ./Allrun -sidewall uses it), each entry of the dictionary
+    sidewallFriction set to its value, or removed where the value is None."""
+    fv = case / "constant" / "fvOptions"
+    shutil.copy(SIDEWALL, fv)
+    for key, value in entries.items():
+        entry = f"sidewallFriction/{key}"
+        if value is None:
+            foam(case, "foamDictionary", "-entry", entry, "-remove",
+                 "constant/fvOptions")
+        else:
+            set_entry(case, "constant/fvOptions", entry, value)
+    return fv
+
+
 def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
                delta_t="1e-4", adjust=False, controls=()):
     """tutorials/squareDrum on n x n cells in validation/results/<dest>:

@@ -12,7 +12,7 @@ import shutil
 
 import pytest
 
-from cases import edit, run, small_drum
+from cases import edit, run, sidewall_friction, small_drum
 
 pytestmark = pytest.mark.smoke
 
@@ -159,6 +159,49 @@ def test_refused(base, tmp_path, name, path, pattern, replacement, words):
     before = {t: sorted(p.name for p in (case / t).iterdir())
               for t in _times(case)}
 
+    _assert_refused(case, name, words, before)
+
+
+# The sidewall friction (constant/fvOptions, granularSidewallFriction):
+# (id, entries set on the drum's fvOptions.sidewall (None: removed), words)
+SIDEWALL_CASES = [
+    ("sidewall-muW-negative", {"muW": -1}, ["fvOptions", "muW", "-1"]),
+    ("sidewall-W-zero", {"W": 0}, ["fvOptions", "W", "0", "> 0"]),
+    ("sidewall-W-negative", {"W": -0.01}, ["fvOptions", "W", "-0.01"]),
+    ("sidewall-no-muW", {"muW": None}, ["fvOptions", "Missing", "muW"]),
+    ("sidewall-no-W", {"W": None}, ["fvOptions", "Missing", "'W'"]),
+    ("sidewall-uSmall-zero", {"uSmall": 0}, ["fvOptions", "uSmall", "0"]),
+    ("sidewall-unknown-wall-motion", {"wallVelocity": "spinning"},
+     ["fvOptions", "wallVelocity", "spinning", "rotation"]),
+]
+
+
+def test_sidewall_runs(base, tmp_path):
+    """The drum's fvOptions.sidewall as it is is selected and runs its
+    step."""
+    case = tmp_path / "sidewall-ok"
+    shutil.copytree(base, case)
+    sidewall_friction(case)
+    rc, out = _solve(case)
+    assert rc == 0, out[-2000:]
+    assert "options type granularSidewallFriction" in out, out[-3000:]
+    assert "walls turning with the mesh" in out, out[-3000:]
+
+
+@pytest.mark.parametrize("name,entries,words", SIDEWALL_CASES,
+                         ids=[c[0] for c in SIDEWALL_CASES])
+def test_sidewall_refused(base, tmp_path, name, entries, words):
+    case = tmp_path / name
+    shutil.copytree(base, case)
+    sidewall_friction(case, **entries)
+    before = {t: sorted(p.name for p in (case / t).iterdir())
+              for t in _times(case)}
+    _assert_refused(case, name, words, before)
+
+
+def _assert_refused(case, name, words, before):
+    """The solver exits non-zero with a FOAM FATAL message holding every
+    word, no core dump, and writes no field."""
     rc, out = _solve(case)
 
     assert rc > 0, f"{name}: exit {rc} (a signal if < 0)\n{out[-3000:]}"

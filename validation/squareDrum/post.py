@@ -133,6 +133,18 @@ def grid(case, time_name, names):
     return X, Y, out
 
 
+def centres(X, Y):
+    """Cell centres (N, N) of the moved block from its corners (grid)."""
+    return (0.25 * (X[:-1, :-1] + X[1:, :-1] + X[:-1, 1:] + X[1:, 1:]),
+            0.25 * (Y[:-1, :-1] + Y[1:, :-1] + Y[:-1, 1:] + Y[1:, 1:]))
+
+
+def relative_speed(f, xc, yc, omega=-2 * math.pi / PERIOD):
+    """|u - Omega k x r| (7.3), the speed relative to the drum, from the
+    components 'Ux', 'Uy' of grid at the centres xc, yc."""
+    return np.hypot(f["Ux"] + omega * yc, f["Uy"] - omega * xc)
+
+
 def sample_rings(case):
     """Sample the circles of system/ringsDict on every written time (by
     OpenFOAM's postProcess, on the moved meshes), once."""
@@ -327,18 +339,14 @@ def figure10(case, out, times=(78.75, 80.0)):
     creep boundary I = I_1 (solid) and the edge of the region where the
     viscosity cap (4.12) is active (dashed)."""
     par = parameters(case)
-    omega = -math.pi / 5
     fig, axes = plt.subplots(3, len(times), figsize=(4.2 * len(times), 11))
     for j, t in enumerate(times):
         name = _time_name(case, t)
         X, Y, f = grid(case, name, ["U", "p", "I", "etaGranular",
                                     "alpha.air"])
-        xc = 0.25 * (X[:-1, :-1] + X[1:, :-1] + X[:-1, 1:] + X[1:, 1:])
-        yc = 0.25 * (Y[:-1, :-1] + Y[1:, :-1] + Y[:-1, 1:] + Y[1:, 1:])
+        xc, yc = centres(X, Y)
         air = f["alpha.air"] >= 0.5
-        ux = f["Ux"] + omega * yc           # u - Omega k x r (7.3)
-        uy = f["Uy"] - omega * xc
-        speed = np.where(air, np.nan, np.hypot(ux, uy))
+        speed = np.where(air, np.nan, relative_speed(f, xc, yc))
         p = np.where(air, np.nan, f["p"])
         logI = np.where(air, np.nan, np.log10(np.maximum(f["I"], 1e-12)))
         capped = np.where(air, 0.0, (f["etaGranular"]
