@@ -80,7 +80,7 @@ def _reader(case, fields):
     reader.UpdatePipelineInformation()
     times = reader.TimestepValues
     times = list(times) if hasattr(times, "__iter__") else [times]
-    if not times:
+    if not times or times[-1] <= 0:
         raise CaseError(f"{case}: no written time after 0 (run the case "
                         "first)")
     wanted = list(dict.fromkeys(list(fields) + [panel.AIR]))
@@ -183,8 +183,8 @@ def _camera(view, bar, bounds, axes, scale):
     view.CameraParallelScale = half
 
 
-def _render_views(reader, time, fields, values, grains, data, exaggeration,
-                  title):
+def _render_views(reader, time, fields, values, grains, parts, data,
+                  exaggeration, title):
     """One render view per field; (views, columns, view size, a function
     that sets the cameras once the views have their size)."""
     bounds = data.GetBounds()
@@ -200,7 +200,6 @@ def _render_views(reader, time, fields, values, grains, data, exaggeration,
                                     + 50)))
     else:
         size = VIEW
-    parts = {True: _threshold(reader, True), False: _threshold(reader, False)}
     views, bars = [], []
     for field in fields:
         view = pv.CreateView("RenderView")
@@ -209,7 +208,7 @@ def _render_views(reader, time, fields, values, grains, data, exaggeration,
         view.OrientationAxesVisibility = 0
         view.UseColorPaletteForBackground = 0
         view.Background = [1.0, 1.0, 1.0]
-        restricted = field in panel.GRAINS_ONLY and grains is not None
+        restricted = field in panel.GRAINS_ONLY and parts
         display = pv.Show(parts[True] if restricted else reader, view)
         display.Scale = scale
         _flat(display)
@@ -239,7 +238,7 @@ def _render_views(reader, time, fields, values, grains, data, exaggeration,
     return views, ncol, size, cameras
 
 
-def _charts(reader, time, fields, grains, centres, bounds, axes, title):
+def _charts(reader, time, fields, parts, centres, bounds, axes, title):
     """A column: one chart per field, the height against the cell values at
     the cell centres, all over the column's height; (views, columns, view
     size, None)."""
@@ -247,12 +246,12 @@ def _charts(reader, time, fields, grains, centres, bounds, axes, title):
     length = panel.AXES[vertical]
     points = {False: pv.CellCenters(registrationName="centres",
                                     Input=reader)}
-    if grains is not None:
+    if parts:
         points[True] = pv.CellCenters(registrationName="grain centres",
-                                      Input=_threshold(reader, True))
+                                      Input=parts[True])
     views = []
     for field in fields:
-        source = points[field in panel.GRAINS_ONLY and grains is not None]
+        source = points[bool(field in panel.GRAINS_ONLY and parts)]
         array = field
         if field == "U":
             source = pv.Calculator(registrationName="speed", Input=source,
@@ -352,14 +351,16 @@ def show(fields, exaggeration=1.0, case=None, screenshot=None):
     name = os.path.basename(case)
     title = f"{name}, t = {time:g} s"
     column = panel.is_column(centres[:, axes], max(extent))
+    parts = {} if grains is None else {
+        True: _threshold(merged, True), False: _threshold(merged, False)}
     if column:
-        scene = _charts(merged, time, fields, grains, centres[:, axes],
+        scene = _charts(merged, time, fields, parts, centres[:, axes],
                         bounds, axes, title.replace(", ", "\n"))
     else:
         if exaggeration != 1.0:
             title += f", vertical exaggeration {exaggeration:g}"
-        scene = _render_views(merged, time, fields, shown, grains, data,
-                              exaggeration, title)
+        scene = _render_views(merged, time, fields, shown, grains, parts,
+                              data, exaggeration, title)
     views, ncol, size, cameras = scene
     layout = pv.CreateLayout(name)
     nrow = _arrange(layout, views, ncol)
@@ -370,10 +371,13 @@ def show(fields, exaggeration=1.0, case=None, screenshot=None):
         layout.SetSize(*resolution)
     if cameras:
         cameras()
-    summary = (f"{len(air) if air is not None else len(centres)} cells, "
-               f"{int(grains.sum()) if grains is not None else 'no air'} in "
-               f"the grains (phi^a < 1/2), t = {time:g}, fields "
-               f"{' '.join(fields)}, "
+    counts = {k: _fetch(part, time)[0].GetNumberOfCells()
+              for k, part in parts.items()}
+    summary = (f"{len(centres)} cells, "
+               + (f"{counts[True]} in the grains (phi^a < 1/2) and "
+                  f"{counts[False]} in the air by threshold, " if parts
+                  else "no air fraction, ")
+               + f"t = {time:g}, fields {' '.join(fields)}, "
                + (f"{len(views)} charts" if column else
                   f"{len(views)} views, exaggeration {exaggeration:g}")
                + f", {ncol} x {nrow}, {resolution[0]} x {resolution[1]} px")
