@@ -18,7 +18,9 @@ colour limits):
   values at the cell centres (the profiles of granularPictures).
 
 The colour ranges are those of the last time and stay fixed when the time
-is changed in the GUI.
+is changed in the GUI.  The cameras fit the views' sizes when the state is
+loaded (in the GUI, the window's): after resizing the window, Reset Camera
+refits a view.
 
 In the GUI, from the case directory after Allrun (ParaView 5.11 takes a
 Python state with --state; File > Load State does the same):
@@ -167,7 +169,7 @@ def _camera(view, bar, bounds, axes, scale):
     aspect = size[0] / size[1]
     space = 1.0 - BAR / size[0]       # the fraction of the width for the mesh
     bar.Position = [space + 0.1 * BAR / size[0], 12.0 / size[1]]
-    bar.ScalarBarLength = 1.0 - 52.0 / size[1]    # two lines of title above
+    bar.ScalarBarLength = max(0.3, 1.0 - 52.0 / size[1])  # title above
     lo = [bounds[2 * k] * scale[k] for k in range(3)]
     hi = [bounds[2 * k + 1] * scale[k] for k in range(3)]
     width, height = hi[right] - lo[right], hi[up] - lo[up]
