@@ -134,7 +134,11 @@ Foam::fv::granularSidewallFriction::granularSidewallFriction
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
 Foam::tmp<Foam::volScalarField::Internal>
-Foam::fv::granularSidewallFriction::K(const volVectorField& U) const
+Foam::fv::granularSidewallFriction::K
+(
+    const volVectorField& U,
+    const volVectorField::Internal& Uw
+) const
 {
     const volScalarField& pg = mesh_.lookupObject<volScalarField>(pName_);
 
@@ -144,7 +148,7 @@ Foam::fv::granularSidewallFriction::K(const volVectorField& U) const
     (
         2*muW_/W_
        *max(pg(), dimensionedScalar(dimPressure, Zero))
-       /max(mag(U() - wallVelocity()), uSmall_)
+       /max(mag(U() - Uw), uSmall_)
     );
     volScalarField::Internal& K = tK.ref();
 
@@ -188,13 +192,14 @@ void Foam::fv::granularSidewallFriction::addSup
 )
 {
     const volVectorField& U = eqn.psi();
-    const tmp<volScalarField::Internal> tK(K(U));
+    const tmp<volVectorField::Internal> tUw(wallVelocity());
+    const tmp<volScalarField::Internal> tK(K(U, tUw()));
 
     // The source -K (u - u_w): -K u on the diagonal, K u_w explicit
     eqn -= fvm::Sp(tK(), U);
     if (rotation_.valid() || wallVelocity_ != vector::zero)
     {
-        eqn += tK()*wallVelocity();
+        eqn += tK()*tUw();
     }
 }
 
