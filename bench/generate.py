@@ -37,11 +37,11 @@ APPLICATION = {"stock": "multiphaseInterFoam",
 # 'granular-implicit': the common fvSolution with these PIMPLE entries set by
 # foamDictionary on the generated case: the viscous stress solved implicitly
 # in the momentum predictor (its part of (4.11) no longer limits Delta t),
-# and the 10 pressure correctors of tutorials/chute
+# and the 20 pressure correctors of tutorials/chute
 IMPLICIT = {
     "PIMPLE/momentumPredictor": "yes",
     "PIMPLE/viscousStress": "implicit",
-    "PIMPLE/nCorrectors": "10",
+    "PIMPLE/nCorrectors": "20",
 }
 
 # Time-step control (controlDict, through benchParameters): fixed Delta t

@@ -1,7 +1,7 @@
 """The results writer: BENCHMARKS.md from the numbers of bench/run.
 
 bench/run calls write(); to render BENCHMARKS.md again from
-bench/results.json (after editing this file, say):
+bench/results.json and bench/tutorials.json (after editing either, say):
 
     /usr/bin/python3 bench/report.py
 """
@@ -149,6 +149,35 @@ def adaptive_section(results):
     ]
 
 
+def tutorials_section():
+    """The tutorials' run times, measured by hand with the commands given
+    (bench/tutorials.json): runs of minutes to hours that bench/run does
+    not repeat."""
+    path = BENCH / "tutorials.json"
+    if not path.exists():
+        return []
+    runs = json.loads(path.read_text())["runs"]
+    lines = [
+        "## Tutorial run times",
+        "",
+        "Measured by hand on the machine above (2 cores) with the command "
+        "of each row; the numbers are in `bench/tutorials.json` and "
+        "rendered here by `bench/report.py`. CPU: the solver's "
+        "`ExecutionTime` (one rank); wall: its `ClockTime`.",
+        "",
+        "| case | mesh | settings | simulated | CPU s | wall s | "
+        "to the steady state | result | measured | command |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in runs:
+        cells = [r["case"], r["mesh"], r["settings"], r["simulated"],
+                 r.get("cpu_s", "–"), r.get("wall_s", "–"),
+                 r.get("to_steady", "–"), r["result"], r["measured"],
+                 f"`{r['command']}`"]
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    return lines
+
+
 def warnings(results):
     lines = []
     adaptive = results.get("per_simulated_second") or {}
@@ -169,6 +198,7 @@ def warnings(results):
 def write(results, path):
     s = results["settings"]
     adaptive = results.get("per_simulated_second")
+    implicit = s.get("implicit_fvSolution", {})
     lines = ["# Benchmarks", ""]
     if results["quick"]:
         simulated = (f", {adaptive['settings']['interval_s']:g} s "
@@ -225,14 +255,18 @@ def write(results, path):
         "%M`) summed over the ranks, the largest of the repetitions.",
         "- parallel efficiency: t1/(2 t2) of the medians, t1 and t2 the "
         "times per step on 1 and 2 ranks.",
-        "- granularSegregationFoam (implicit): fvSolution PIMPLE "
-        "`momentumPredictor yes; viscousStress implicit; nCorrectors 10;` "
-        "at the same fixed Δt: a momentum solve and 10 pressure correctors "
+        "- granularSegregationFoam (implicit): fvSolution PIMPLE `"
+        + " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
+        + "` at the same fixed Δt: a momentum solve and "
+        f"{implicit.get('PIMPLE/nCorrectors', '?')} pressure correctors "
         "a step instead of 2, so a step costs more"
         + ("; the time step it allows is in the next table."
            if adaptive else "."),
     ]
     section = adaptive_section(results)
+    if section:
+        lines += ["", *section]
+    section = tutorials_section()
     if section:
         lines += ["", *section]
     notes = warnings(results)
