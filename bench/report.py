@@ -160,8 +160,9 @@ def tutorials_section():
     lines = [
         "## Tutorial run times",
         "",
-        "Measured by hand on the machine above (2 cores) with the command "
-        "of each row; the numbers are in `bench/tutorials.json` and "
+        "Measured by hand on these 2-core machines (not always the machine "
+        "above: the column 'measured' says when and beside what) with the "
+        "command of each row; the numbers are in `bench/tutorials.json` and "
         "rendered here by `bench/report.py`. CPU: the solver's "
         "`ExecutionTime` (one rank); wall: its `ClockTime`.",
         "",
