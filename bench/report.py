@@ -110,7 +110,6 @@ def adaptive_section(results):
         return []
     s = adaptive["settings"]
     c = s["controlDict"]
-    implicit = results["settings"].get("implicit_fvSolution", {})
     return [
         "## Time per simulated second",
         "",
@@ -129,8 +128,7 @@ def adaptive_section(results):
         f"maxDeltaT {c['maxDeltaT']:g};`, from deltaT {c['deltaT']:g} s "
         "(growing by at most 20 % a step). Explicit: the common "
         "fvSolution; implicit: PIMPLE `"
-        + " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
-        + "`.",
+        + implicit_entries(results) + "`.",
         "",
         *adaptive_table(adaptive),
         "",
@@ -177,6 +175,13 @@ def tutorials_section():
                  f"`{r['command']}`"]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     return lines
+
+
+def implicit_entries(results):
+    """The implicit configuration's fvSolution entries as they read in the
+    file, e.g. 'momentumPredictor yes; viscousStress implicit; ...'."""
+    implicit = results["settings"].get("implicit_fvSolution", {})
+    return " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
 
 
 def warnings(results):
@@ -257,8 +262,7 @@ def write(results, path):
         "- parallel efficiency: t1/(2 t2) of the medians, t1 and t2 the "
         "times per step on 1 and 2 ranks.",
         "- granularSegregationFoam (implicit): fvSolution PIMPLE `"
-        + " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
-        + "` at the same fixed Δt: a momentum solve and "
+        + implicit_entries(results) + "` at the same fixed Δt: a momentum solve and "
         f"{implicit.get('PIMPLE/nCorrectors', '?')} pressure correctors "
         "a step instead of 2, so a step costs more"
         + ("; the time step it allows is in the next table."
