@@ -14,9 +14,9 @@ Description
     phases of Barker, Rauter, Maguire, Johnson & Gray (2021), "Coupling
     rheology and segregation in granular flows", J. Fluid Mech. 909, A22.
 
-    Derived from multiphaseInterFoam (v1912): the same PIMPLE/PISO
-    pressure-velocity coupling (4.1)-(4.2) (interFoam's UEqn.H and pEqn.H),
-    dynamic meshes and MPI; the phases are transported with MULES by
+    Derived from multiphaseInterFoam (v1912): its PIMPLE loop, dynamic
+    meshes and MPI, with a pressure-velocity coupling (4.1)-(4.2) of PISO
+    or SIMPLEC correctors (granularCoupling, UEqn.H, pEqn.H); the phases are transported with MULES by
     granularMixture, with pairwise segregation (2.13) and Maxwell-Stefan
     diffusion (2.15) in the place of interface compression, the air
     segregated out of the grains (4.3)-(4.5), and the mu(I) viscosity of
@@ -36,6 +36,7 @@ Description
 #include "fvCFD.H"
 #include "dynamicFvMesh.H"
 #include "granularMixture.H"
+#include "granularCoupling.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
 #include "fvOptions.H"
@@ -67,6 +68,8 @@ int main(int argc, char *argv[])
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "createFields.H"
+
+    granularCoupling coupling(pimple);
     #include "initCorrectPhi.H"
     #include "createUfIfPresent.H"
 
@@ -98,11 +101,15 @@ int main(int argc, char *argv[])
         #include "readDyMControls.H"
         #include "granularCourantNo.H"
         #include "alphaCourantNo.H"
+        #include "transportCourantNo.H"
         #include "setDeltaT.H"
 
         ++runTime;
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        coupling.read();
+        coupling.newTimeStep();
 
         // --- Pressure-velocity PIMPLE corrector loop
         while (pimple.loop())
@@ -137,16 +144,28 @@ int main(int argc, char *argv[])
             }
 
             // Picard: rheology of the previous iterate, then the phases
-            mixture.correctRheology(p, p_rgh.needReference());
-            mixture.solve();
-            rho = mixture.rho();
+            if (coupling.correctMixture())
+            {
+                mixture.correctRheology(p, p_rgh.needReference());
+                mixture.solve();
+                rho = mixture.rho();
+            }
 
             #include "UEqn.H"
 
-            // --- Pressure corrector loop
-            while (pimple.correct())
             {
-                #include "pEqn.H"
+                #include "pCoefficients.H"
+
+                // --- Pressure corrector loop
+                while (coupling.correct())
+                {
+                    #include "pEqn.H"
+                }
+            }
+
+            if (!correctPhi)
+            {
+                rAU.clear();
             }
 
             // Closed domains: the reference cell turns with a rotating
@@ -165,6 +184,7 @@ int main(int argc, char *argv[])
             }
         }
 
+        coupling.report();
         mixture.checkFinite(U, p);
 
         runTime.write();

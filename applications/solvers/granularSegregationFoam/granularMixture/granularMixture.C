@@ -842,7 +842,11 @@ Foam::granularMixture::cfl
         diff += D.primitiveField()*G_;
     }
 
-    scalarField total(conv + segregationRate_ + diff);
+    // Sub-cycled transport: the momentum's part alone limits the step here,
+    // the transport's part is divided among the sub-cycles (solve())
+    const label nSubMax = maxAlphaSubCycles();
+    const scalarField transport(conv + segregationRate_ + diff);
+    scalarField total(nSubMax ? conv : transport);
     if (viscousLimit)
     {
         total += visc;
@@ -855,6 +859,8 @@ Foam::granularMixture::cfl
     parts.segregation = gMax(segregationRate_)*deltaT;
     parts.diffusion = gMax(diff)*deltaT;
     parts.total = maxTotal*deltaT;
+    parts.maxSubCycles = nSubMax;
+    parts.transport = gMax(transport)*deltaT;
 
     // The largest part in the cell of the largest total (any processor)
     FixedList<scalar, 4> local(Zero);
@@ -862,7 +868,12 @@ Foam::granularMixture::cfl
     {
         const label c = findMax(total);
         local =
-            {conv[c], viscousLimit ? visc[c] : 0, segregationRate_[c], diff[c]};
+        {
+            conv[c],
+            viscousLimit ? visc[c] : 0,
+            nSubMax ? 0 : segregationRate_[c],
+            nSubMax ? 0 : diff[c]
+        };
         if (total[c] < maxTotal)
         {
             local = Zero;
@@ -905,7 +916,7 @@ Foam::granularMixture::readViscousStress(const pimpleControl& pimple)
             << "viscousStress implicit with nCorrectors " << pimple.nCorrPISO()
             << " in " << dict.name() << ": the pressure may not"
             << " converge within a step at large Delta t; the chute"
-            << " tutorial uses nCorrectors 10" << endl;
+            << " tutorial uses nCorrectors 20" << endl;
     }
     Info<< "Viscous stress: " << viscousStressNames[v]
         << (v == viscousStress::implicitStress
@@ -1126,17 +1137,64 @@ void Foam::granularMixture::report() const
 }
 
 
+Foam::label Foam::granularMixture::maxAlphaSubCycles() const
+{
+    const dictionary& dict = mesh_.solverDict("alpha");
+    const label nMax = dict.getOrDefault<label>("maxAlphaSubCycles", 0);
+    if (dict.found("maxAlphaSubCycles") && nMax < 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'maxAlphaSubCycles' in dictionary "
+            << dict.name() << ": maxAlphaSubCycles = " << nMax << " (>= 1)"
+            << nl << exit(FatalIOError);
+    }
+    if (nMax && dict.getOrDefault<label>("nAlphaSubCycles", 1) != 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid keywords in dictionary " << dict.name()
+            << ": nAlphaSubCycles = " << dict.get<label>("nAlphaSubCycles")
+            << " with maxAlphaSubCycles = " << nMax << ": give one of them"
+            << " (a fixed count, or the largest adaptive count)" << nl
+            << exit(FatalIOError);
+    }
+    return nMax;
+}
+
+
+Foam::label Foam::granularMixture::nAlphaSubCycles() const
+{
+    const Time& runTime = mesh_.time();
+    const dictionary& dict = mesh_.solverDict("alpha");
+
+    const label nMax = maxAlphaSubCycles();
+    if (nMax)
+    {
+        // As many as keep each sub-cycle's transport part within maxAlphaCo
+        const scalar maxAlphaCo =
+            runTime.controlDict().get<scalar>("maxAlphaCo");
+        const scalar Co = cfl(runTime.deltaTValue(), false).transport;
+        return min(nMax, max(label(1), label(std::ceil(Co/maxAlphaCo - 1e-6))));
+    }
+
+    const label nSub = dict.getOrDefault<label>("nAlphaSubCycles", 1);
+    if (nSub < 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'nAlphaSubCycles' in dictionary "
+            << dict.name() << ": nAlphaSubCycles = "
+            << nSub << " (>= 1)" << nl << exit(FatalIOError);
+    }
+    return nSub;
+}
+
+
 void Foam::granularMixture::solve()
 {
     const Time& runTime = mesh_.time();
-    const label nSub =
-        mesh_.solverDict("alpha").getOrDefault<label>("nAlphaSubCycles", 1);
-    if (nSub < 1)
+    const label nSub = nAlphaSubCycles();
+    if (maxAlphaSubCycles())
     {
-        FatalIOErrorInFunction(mesh_.solverDict("alpha"))
-            << "Invalid value of keyword 'nAlphaSubCycles' in dictionary "
-            << mesh_.solverDict("alpha").name() << ": nAlphaSubCycles = "
-            << nSub << " (>= 1)" << nl << exit(FatalIOError);
+        Info<< "Phase transport: " << nSub << " sub-cycles" << endl;
     }
 
     if (nSub > 1)

@@ -1,0 +1,155 @@
+/*---------------------------------------------------------------------------*\
+    granularSegregationFoam: coupled mu(I) rheology and size segregation
+    Copyright (C) 2026 The granularSegregationFoam authors
+    License: GNU General Public License v3 or later (see LICENSE)
+\*---------------------------------------------------------------------------*/
+
+#include "granularCoupling.H"
+
+// * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
+
+const Foam::Enum<Foam::granularCoupling::pressureCoupling>
+Foam::granularCoupling::pressureCouplingNames
+({
+    { pressureCoupling::PISO, "PISO" },
+    { pressureCoupling::SIMPLEC, "SIMPLEC" },
+});
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
+:
+    pimple_(pimple),
+    coupling_(pressureCoupling::PISO),
+    tolerance_(0),
+    freezeMixture_(false),
+    corr_(0),
+    final_(false),
+    nextFinal_(false),
+    nSolutions_(0),
+    residual_(0)
+{
+    read();
+    Info<< "Pressure coupling: " << pressureCouplingNames[coupling_]
+        << ", at most " << pimple_.nCorrPISO() << " correctors";
+    if (tolerance_ > 0)
+    {
+        Info<< ", ended once the initial residual of p_rgh is below "
+            << tolerance_;
+    }
+    if (freezeMixture_)
+    {
+        Info<< "; phases and rheology in the first outer iteration only";
+    }
+    Info<< nl << endl;
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::granularCoupling::read()
+{
+    const dictionary& dict = pimple_.dict();
+
+    coupling_ = pressureCouplingNames.getOrDefault
+    (
+        "pressureCoupling", dict, pressureCoupling::PISO
+    );
+
+    freezeMixture_ = dict.getOrDefault<bool>("freezeMixture", false);
+
+    const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
+    if (nCorr < 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'nCorrectors' in dictionary "
+            << dict.name() << ": nCorrectors = " << nCorr << " (>= 1)" << nl
+            << exit(FatalIOError);
+    }
+
+    tolerance_ = dict.getOrDefault<scalar>("pRghTolerance", 0);
+    if (tolerance_ < 0 || tolerance_ >= 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'pRghTolerance' in dictionary "
+            << dict.name() << ": pRghTolerance = " << tolerance_
+            << " (0 <= pRghTolerance < 1; 0: run every corrector)" << nl
+            << exit(FatalIOError);
+    }
+}
+
+
+Foam::tmp<Foam::volScalarField> Foam::granularCoupling::pressureCoefficient
+(
+    const volScalarField& rAU,
+    const volScalarField& H1,
+    const volScalarField& rho
+) const
+{
+    return tmp<volScalarField>::New
+    (
+        "rAtU",
+        1.0/max(1.0/rAU - H1, rho/rho.time().deltaT())
+    );
+}
+
+
+void Foam::granularCoupling::newTimeStep()
+{
+    nSolutions_ = 0;
+    residual_ = 0;
+}
+
+
+bool Foam::granularCoupling::correct()
+{
+    if (final_)
+    {
+        // The final corrector was solved: the loop of this outer iteration
+        // is done; the next outer iteration starts again
+        corr_ = 0;
+        final_ = false;
+        nextFinal_ = false;
+        return false;
+    }
+
+    ++corr_;
+    final_ = nextFinal_ || corr_ >= pimple_.nCorrPISO();
+    return true;
+}
+
+
+void Foam::granularCoupling::store
+(
+    const scalar initialResidual,
+    const bool firstOfCorrector
+)
+{
+    ++nSolutions_;
+    if (!firstOfCorrector)
+    {
+        return;
+    }
+    residual_ = initialResidual;
+    if (tolerance_ > 0 && initialResidual < tolerance_)
+    {
+        nextFinal_ = true;
+    }
+}
+
+
+void Foam::granularCoupling::report() const
+{
+    Info<< "Pressure coupling: " << nSolutions_ << " pressure solutions,"
+        << " initial residual of the last " << residual_;
+    if (tolerance_ > 0 && residual_ >= tolerance_)
+    {
+        Info<< ": not converged to pRghTolerance " << tolerance_
+            << " within nCorrectors " << pimple_.nCorrPISO();
+    }
+    Info<< endl;
+}
+
+
+// ************************************************************************* //
