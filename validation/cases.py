@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from conftest import PROJECT, run
+from conftest import PROJECT, committed_copy, run
 from exact import errors
 
 RESULTS = PROJECT / "validation" / "results"
@@ -20,16 +20,13 @@ NUMBER = r"[-+0-9.eE]+"
 
 
 def fresh_case(name, dest=None, tutorial=False):
-    """Copy validation/cases/<name> (tutorials/<name> if tutorial) to
-    validation/results/<dest or name>."""
-    src = PROJECT / ("tutorials" if tutorial else "validation/cases") / name
-    assert src.is_dir(), f"no case {src}"
+    """Copy validation/cases/<name> (tutorials/<name> if tutorial), as HEAD
+    holds it (committed_copy), to validation/results/<dest or name>."""
     dst = RESULTS / (dest or name)
     if dst.exists():
         shutil.rmtree(dst)
-    dst.parent.mkdir(parents=True, exist_ok=True)
-    shutil.copytree(src, dst)
-    return dst
+    return committed_copy(
+        f"{'tutorials' if tutorial else 'validation/cases'}/{name}", dst)
 
 
 def foam_output(case, *cmd, timeout=3600):
@@ -157,16 +154,16 @@ def set_decomposition(case, method):
          [(r"\nmethod\s+\w+;", f"\nmethod          {method};")])
 
 
-SIDEWALL = PROJECT / "tutorials" / "squareDrum" / "constant" / "fvOptions.sidewall"
+SIDEWALL = "tutorials/squareDrum/constant/fvOptions.sidewall"
 
 
 def sidewall_friction(case, **entries):
     """Give case the sidewall friction: constant/fvOptions from the drum's
-    constant/fvOptions.sidewall (the one example of granularSidewallFriction,
-    as ./Allrun -sidewall uses it), each entry of the dictionary
-    sidewallFriction set to its value, or removed where the value is None."""
-    fv = case / "constant" / "fvOptions"
-    shutil.copy(SIDEWALL, fv)
+    constant/fvOptions.sidewall as HEAD holds it (the one example of
+    granularSidewallFriction, as ./Allrun -sidewall uses it), each entry of
+    the dictionary sidewallFriction set to its value, or removed where the
+    value is None."""
+    fv = committed_copy(SIDEWALL, case / "constant" / "fvOptions")
     for key, value in entries.items():
         entry = f"sidewallFriction/{key}"
         if value is None:

@@ -3,12 +3,14 @@
 A missing OpenFOAM environment, a program that did not run or a missing
 output file is a failure here, never a skip.
 """
+import io
 import json
 import os
 import shutil
 import subprocess
+import tarfile
 import time
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 import pytest
 
@@ -42,15 +44,55 @@ def executable(name):
     return path
 
 
+def committed_copy(path, dst, project=PROJECT):
+    """Copy path (a folder or a file, relative to the root of the git
+    checkout project) to dst as the checked-out commit (HEAD) holds it, by
+    git archive, keeping the file modes (the executable Allrun scripts);
+    return dst.
+
+    The tests take every case this way, never from the work tree: a user's
+    tutorial folder holds their runs (time directories, processor*,
+    movingFrame/, postProcessing/, logs, figures) and their edits of the
+    dictionaries, none of which is in HEAD; the index (staged changes) is
+    not read either.  A change to a case is tested once committed.  A
+    project that is not a git checkout, or a path not in HEAD, is an
+    assertion failure."""
+    path = PurePosixPath(path)
+    res = subprocess.run(["git", "-C", str(project), "-c", "tar.umask=user",
+                          "archive", "--format=tar", "HEAD", "--", str(path)],
+                         capture_output=True)
+    assert res.returncode == 0, (
+        f"cannot copy {path} from HEAD of {project} (the tests take their "
+        "cases from the git repository, so the project must be a git "
+        "checkout with the path committed): "
+        + res.stderr.decode(errors="replace").strip())
+    dst = Path(dst)
+    with tarfile.open(fileobj=io.BytesIO(res.stdout)) as tar:
+        for member in tar:
+            name = PurePosixPath(member.name)
+            if name != path and path not in name.parents:
+                continue                 # the folders above path
+            target = dst.joinpath(*name.relative_to(path).parts)
+            if member.isdir():
+                target.mkdir(parents=True, exist_ok=True)
+                continue
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if member.issym():
+                target.symlink_to(member.linkname)
+            else:
+                assert member.isfile(), f"{member.name}: not a file"
+                target.write_bytes(tar.extractfile(member).read())
+                target.chmod(member.mode)
+    assert dst.exists(), f"{path} is not in HEAD of {project}"
+    return dst
+
+
 @pytest.fixture
 def case_copy(tmp_path):
-    """Copy a tutorial into a temporary directory, return the copy's path."""
+    """Copy a tutorial, as HEAD holds it, into a temporary directory;
+    return the copy's path."""
     def copy(name):
-        src = PROJECT / "tutorials" / name
-        assert src.is_dir(), f"no tutorial {name}"
-        dst = tmp_path / name
-        shutil.copytree(src, dst)
-        return dst
+        return committed_copy(f"tutorials/{name}", tmp_path / name)
     return copy
 
 

@@ -115,11 +115,13 @@ def test_bad_pairs():
             dataclasses.replace(C3, D=(((0, 1), 0.0),) + C3.D[1:]))
 
 
-def test_column_matches_tutorial_defaults():
-    """COLUMN is the tutorial's tridisperseParameters (read as text)."""
-    from conftest import PROJECT
-    text = (PROJECT / "tutorials" / "tridisperseColumn" / "system"
-            / "tridisperseParameters").read_text()
+def test_column_matches_tutorial_defaults(tmp_path):
+    """COLUMN is the tutorial's tridisperseParameters (read as text, as
+    HEAD holds it)."""
+    from conftest import committed_copy
+    text = committed_copy(
+        "tutorials/tridisperseColumn/system/tridisperseParameters",
+        tmp_path / "tridisperseParameters").read_text()
     values = {k: float(v) for k, v in
               (line.split(";")[0].split() for line in text.splitlines()
                if line.split() and line.split()[0] in tridisperse.KEYS)}
