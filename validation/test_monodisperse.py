@@ -1,4 +1,4 @@
-"""Smoke tier: round-off in the mixture's diagnostics.
+"""Smoke tier: monodisperse cases and round-off in the mixture's diagnostics.
 
 The base is validation/cases/staticColumn on 20 cells over its 5 mm: grains
 in the lower half, air above, a few fixed steps with writes.
@@ -8,6 +8,13 @@ in the lower half, air above, a few fixed steps with writes.
   air (as MULES leaves them where it undershoots): the run reaches its
   writes and every logged segregation index is finite and 0 (a uniform
   mix), every monitored invariant finite.
+- One grain phase, without segregation and diffusion (or with both empty):
+  setGranularFields sets it, the solver runs and writes, the log shows the
+  phase volumes and no segregation index, the base pressure is the weight
+  Phi rho_* g h of the grains (plus the air's), and granularPictures draws
+  it.
+- One grain phase given a pair law (segregation or diffusion): refused with
+  a FatalIOError naming granularProperties, the keyword and the entry.
 """
 import math
 import re
@@ -15,18 +22,30 @@ import re
 import numpy as np
 import pytest
 
-from cases import edit, foam, fresh_case, log_reports, run
+from cases import (NUMBER, edit, foam, foam_output, fresh_case, log_reports,
+                   run)
 from conftest import executable
+from chute.post import read_field
 
 pytestmark = pytest.mark.smoke
 
 NZ = 20                 # cells over the column's 5 mm
 GRAIN_CELLS = 10        # grains in the lower half, air above
+H = 5e-3                # column height [m]
 UNDERSHOOT = -1e-13     # a grain fraction in the air, as MULES leaves it
 STEPS = 4               # fixed steps of DELTA_T, a write every 2
 DELTA_T = 1e-5
 
 GP = "constant/granularProperties"
+
+BARKER_GRAY = """\
+        d               0.5e-3;
+        frictionLaw     BarkerGray;
+        BarkerGrayCoeffs
+        {
+            mus 0.342; mud 0.557; muInf 0.05; I0 0.069; alpha 1.9; I1 0.004;
+        }"""
+
 
 def alpha_file(name, values):
     """An alpha.<name> field file of the column with the given cell values
@@ -135,3 +154,118 @@ def test_identical_mixed_phases_roundoff(foam_env):
     values = np.array([[float(x) for x in r] for r in rows])
     assert np.isfinite(values).all(), f"non-finite invariants:\n{rows}"
     assert (values[:, header.index("nonFinite")] == 0).all()
+
+
+# ---------------------------------------------------------------------------
+# One grain phase
+# ---------------------------------------------------------------------------
+
+ONE_PHASE_GRAINS = "grains\n{\n    grains\n    {\n" + BARKER_GRAY + "\n    }\n}\n"
+
+SET_FIELDS = f"""FoamFile
+{{
+    version     2.0;
+    format      ascii;
+    class       dictionary;
+    location    "system";
+    object      setGranularFieldsDict;
+}}
+
+grains
+{{
+    point       (0 0 {GRAIN_CELLS / NZ * H!r});
+    normal      (0 0 1);
+    fractions   {{ grains 1; }}
+}}
+
+velocity        (0 0 0);
+"""
+
+
+def one_phase(dest, pairs):
+    """The column with the one grain phase 'grains' in its lower half, set
+    by setGranularFields; pairs: 'absent' (no segregation, no diffusion),
+    'empty' (both empty) or the text put in their place."""
+    case = column(dest, ("air", "grains"))
+    replacement = {"absent": "", "empty": "segregation { }\ndiffusion { }\n"}
+    edit(case / GP, [
+        (r"\ngrains\n\{.*?\n\}\n", "\n" + ONE_PHASE_GRAINS),
+        (r"\nsegregation\n\{.*?\n\}\n\ndiffusion\n\{.*?\n\}\n",
+         "\n" + replacement.get(pairs, pairs)),
+    ], flags=re.S)
+    for name in ("air", "grains"):
+        (case / "0" / f"alpha.{name}").write_text(alpha_file(name, [0] * NZ))
+    (case / "system" / "setGranularFieldsDict").write_text(SET_FIELDS)
+    foam(case, executable("setGranularFields"))
+    return case
+
+
+def rheology_entry(case, key):
+    """The first number given to key in constant/granularProperties."""
+    text = (case / GP).read_text()
+    m = re.search(rf"^\s*{key}\s+({NUMBER});", text, re.M)
+    assert m, f"no {key} in {case / GP}"
+    return float(m.group(1))
+
+
+@pytest.mark.parametrize("pairs", ["absent", "empty"])
+def test_one_grain_phase_runs(foam_env, pairs):
+    """One grain phase, segregation and diffusion absent or empty: the run
+    writes, logs the volumes and no segregation index; the base pressure is
+    the grains' weight Phi rho_* g h plus the air's; granularPictures draws
+    the written time."""
+    case = one_phase(f"monodisperse/one_{pairs}", pairs)
+    rc, log = solve(case)
+    (case / "log.granularSegregationFoam").write_text(log)
+    assert rc == 0, f"exit {rc} (a signal if < 0):\n{log[-3000:]}"
+
+    reports = log_reports(log)
+    last = f"{STEPS * DELTA_T:g}"
+    assert last in reports, f"no report at the last write {last}: {reports}"
+    for time_name, (vols, index) in reports.items():
+        assert set(vols) == {"alpha.air", "alpha.grains"}, vols
+        assert abs(vols["alpha.grains"] / vols["alpha.air"] - 1) < 1e-9, (
+            f"t = {time_name}: grains fill half the column: {vols}")
+        assert index is None, f"t = {time_name}: segregation index {index}"
+    assert "Segregation index" not in log
+
+    for name in ("alpha.grains", "alpha.air", "U", "p"):
+        assert (case / last / name).is_file(), f"{name} not written at {last}"
+
+    # Hydrostatic: p between the lowest and the highest cell centre is the
+    # weight of the mixture, rho = phi^g Phi rho_* + phi^a rho^a (4.7a)
+    p = read_field(case, last, "p")
+    alpha = read_field(case, last, "alpha.grains")
+    rho = (alpha * rheology_entry(case, "Phi") * rheology_entry(case, "rhoStar")
+           + (1 - alpha) * rheology_entry(case, "rho"))
+    weight = 9.81 * H / NZ * (rho.sum() - (rho[0] + rho[-1]) / 2)
+    assert abs(p[0] - p[-1] - weight) < 1e-3 * weight, (
+        f"base pressure {p[0]} Pa, top {p[-1]} Pa, weight {weight} Pa")
+
+    out, _ = foam_output(case, executable("granularPictures"),
+                         "-latestTime", "-name", "one")
+    png = case / "figures" / f"one_{last}.png"
+    assert png.is_file() and png.stat().st_size > 1000, out
+    assert "alpha.grains" in out, out
+
+
+@pytest.mark.parametrize("keyword,law", [
+    ("segregation", "model constant; f 7e-3;"),
+    ("diffusion", "model constant; D 1e-6;"),
+])
+def test_one_grain_phase_pair_refused(foam_env, keyword, law):
+    """One grain phase with a pair law: a FatalIOError naming
+    granularProperties, the keyword, the entry and the one grain phase;
+    no crash, no field written."""
+    entry = f"{keyword}\n{{\n    grainsGrains {{ phases (grains grains); {law} }}\n}}\n"
+    case = one_phase(f"monodisperse/pair_{keyword}", entry)
+    rc, log = solve(case)
+    assert rc > 0, f"exit {rc} (a signal if < 0)\n{log[-3000:]}"
+    assert "FOAM FATAL IO ERROR" in log, log[-3000:]
+    message = log[log.index("FOAM FATAL"):]
+    for word in ("granularProperties", keyword, "grainsGrains",
+                 "one grain phase"):
+        assert word in message, f"{word!r} not in\n{message[:2000]}"
+    written = [d.name for d in case.iterdir()
+               if re.fullmatch(r"[0-9.e+-]+", d.name) and d.name != "0"]
+    assert not written, f"fields written: {written}"

@@ -693,13 +693,6 @@ Foam::granularMixture::granularMixture
     readAir();
 
     const wordList& grains = rheology_.names();
-    if (grains.size() < 2)
-    {
-        FatalIOErrorInFunction(*this)
-            << "Invalid value of keyword 'grains' in dictionary " << name()
-            << ": " << grains.size() << " grain phase(s) " << grains
-            << " (at least 2 are needed)" << nl << exit(FatalIOError);
-    }
     if (grains.found(airName_))
     {
         FatalIOErrorInFunction(*this)
