@@ -15,6 +15,9 @@ in the lower half, air above, a few fixed steps with writes.
   it.
 - One grain phase given a pair law (segregation or diffusion): refused with
   a FatalIOError naming granularProperties, the keyword and the entry.
+- The square drum (tutorials/squareDrum, 8 x 8) with one grain phase:
+  setGranularFields sets it, and rotatingDrum, granularInvariants and the
+  volumes monitor the phases through two steps.
 """
 import math
 import re
@@ -23,7 +26,7 @@ import numpy as np
 import pytest
 
 from cases import (NUMBER, edit, foam, foam_output, fresh_case, log_reports,
-                   run)
+                   run, small_drum, volumes)
 from conftest import executable
 from chute.post import read_field
 
@@ -105,9 +108,10 @@ def solve(case):
     return res.returncode, res.stdout + res.stderr
 
 
-def invariants(case):
-    """The granularInvariants table: (header names, rows)."""
-    path = case / "postProcessing" / "invariants" / "0" / "granularInvariants.dat"
+def table(case, function, name):
+    """A function object's table postProcessing/<function>/0/<name>:
+    (header names, rows of words)."""
+    path = case / "postProcessing" / function / "0" / name
     assert path.is_file(), f"missing {path}"
     header, rows = None, []
     for line in path.read_text().splitlines():
@@ -150,10 +154,16 @@ def test_identical_mixed_phases_roundoff(foam_env):
             f"t = {time_name}: segregation index {index} of a uniform mix")
         assert all(math.isfinite(v) for v in vols.values()), vols
 
-    header, rows = invariants(case)
+    assert_finite_invariants(case)
+
+
+def assert_finite_invariants(case):
+    """Every value of the granularInvariants monitor is finite, no cell holds
+    a NaN."""
+    header, rows = table(case, "invariants", "granularInvariants.dat")
     values = np.array([[float(x) for x in r] for r in rows])
     assert np.isfinite(values).all(), f"non-finite invariants:\n{rows}"
-    assert (values[:, header.index("nonFinite")] == 0).all()
+    assert (values[:, header.index("nonFinite")] == 0).all(), rows
 
 
 # ---------------------------------------------------------------------------
@@ -269,3 +279,58 @@ def test_one_grain_phase_pair_refused(foam_env, keyword, law):
     written = [d.name for d in case.iterdir()
                if re.fullmatch(r"[0-9.e+-]+", d.name) and d.name != "0"]
     assert not written, f"fields written: {written}"
+
+
+# ---------------------------------------------------------------------------
+# The square drum with one grain phase
+# ---------------------------------------------------------------------------
+
+def monodisperse_drum(case):
+    """The drum's grains made one phase, 'grains', of the small grains' size
+    and law, without pairs, in every file that names the phases; the
+    monitors write every step."""
+    edit(case / GP, [
+        (r"\n    large\n    \{.*?\n    \}\n", "\n"),
+        (r"\n    small\n    \{", "\n    grains\n    {"),
+        (r"\nsegregation\n\{.*?\n\}\n", "\n"),
+        (r"\ndiffusion\n\{.*?\n\}\n", "\n"),
+    ], flags=re.S)
+    edit(case / "system" / "setGranularFieldsDict",
+         [(r"fractions\s+\{[^}]*\}", "fractions   { grains 1; }")])
+    orig = case / "0.orig"
+    (orig / "alpha.grains").write_text(
+        (orig / "alpha.small").read_text().replace("alpha.small", "alpha.grains"))
+    (orig / "alpha.small").unlink()
+    (orig / "alpha.large").unlink()
+    phases = r"\(alpha\.air alpha\.small alpha\.large\)"
+    edit(case / "system" / "controlDict",
+         [(phases, "(alpha.air alpha.grains)")] * 3 + [
+             (r"field           alpha\.small;", "field alpha.grains;")]
+         + [(r"writeInterval   0\.05;", "writeInterval 1e-4;")] * 4)
+
+
+def test_one_grain_phase_drum(foam_env):
+    """The square drum with one grain phase runs two steps; rotatingDrum
+    writes a finite surface angle and peak speed (J is nan before a
+    revolution), the invariants and the volumes are finite, and no
+    segregation index is logged."""
+    case = small_drum("monodisperse/drum", n=8, end_time="2e-4",
+                      write_interval="1e-4", delta_t="1e-4",
+                      prepare=monodisperse_drum)
+    rc, log = solve(case)
+    (case / "log.granularSegregationFoam").write_text(log)
+    assert rc == 0, f"exit {rc} (a signal if < 0):\n{log[-3000:]}"
+    assert "Segregation index" not in log
+
+    header, rows = table(case, "drum", "rotatingDrum.dat")
+    assert len(rows) == 2, f"drum monitor rows {rows}"
+    for row in rows:
+        assert row[header.index("J")] == "nan", row
+        angle = float(row[header.index("surfaceAngle[deg]")])
+        speed = float(row[header.index("peakSpeed[m/s]")])
+        assert 0 <= angle <= 90 and math.isfinite(speed), row
+
+    assert_finite_invariants(case)
+    _, vols = volumes(case)
+    assert set(vols) == {"alpha.air", "alpha.grains"}, set(vols)
+    assert all(np.isfinite(v).all() and min(v) > 0 for v in vols.values())
