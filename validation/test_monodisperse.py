@@ -8,11 +8,11 @@ in the lower half, air above, a few fixed steps with writes.
   air (as MULES leaves them where it undershoots): the run reaches its
   writes and every logged segregation index is finite and 0 (a uniform
   mix), every monitored invariant finite.
-- One grain phase, without segregation and diffusion (or with both empty):
-  setGranularFields sets it, the solver runs and writes, the log shows the
-  phase volumes and no segregation index, the base pressure is the weight
-  Phi rho_* g h of the grains (plus the air's), and granularPictures draws
-  it.
+- One grain phase, the README's recipe, without segregation and diffusion
+  (or with both empty): setGranularFields sets it, the solver runs and
+  writes, the log shows the phase volumes and no segregation index, the
+  base pressure is the weight Phi rho_* g h of the grains (plus the air's),
+  and granularPictures draws it.
 - One grain phase given a pair law (segregation or diffusion): refused with
   a FatalIOError naming granularProperties, the keyword and the entry.
 - The square drum (tutorials/squareDrum, 8 x 8) with one grain phase:
@@ -27,7 +27,7 @@ import pytest
 
 from cases import (NUMBER, edit, foam, foam_output, fresh_case, log_reports,
                    run, small_drum, volumes)
-from conftest import executable
+from conftest import PROJECT, executable
 from chute.post import read_field
 
 pytestmark = pytest.mark.smoke
@@ -40,15 +40,6 @@ STEPS = 4               # fixed steps of DELTA_T, a write every 2
 DELTA_T = 1e-5
 
 GP = "constant/granularProperties"
-
-BARKER_GRAY = """\
-        d               0.5e-3;
-        frictionLaw     BarkerGray;
-        BarkerGrayCoeffs
-        {
-            mus 0.342; mud 0.557; muInf 0.05; I0 0.069; alpha 1.9; I1 0.004;
-        }"""
-
 
 def alpha_file(name, values):
     """An alpha.<name> field file of the column with the given cell values
@@ -170,7 +161,15 @@ def assert_finite_invariants(case):
 # One grain phase
 # ---------------------------------------------------------------------------
 
-ONE_PHASE_GRAINS = "grains\n{\n    grains\n    {\n" + BARKER_GRAY + "\n    }\n}\n"
+def readme_recipe():
+    """The granularProperties of the README's monodisperse recipe: the code
+    block after its paragraph "Monodisperse (one grain phase)"."""
+    text = (PROJECT / "README.md").read_text()
+    start = text.find("**Monodisperse (one grain phase).**")
+    assert start >= 0, "no monodisperse recipe in README.md"
+    m = re.search(r"\n```\n(.*?\n)```\n", text[start:], re.S)
+    assert m, "no code block after the monodisperse recipe in README.md"
+    return m.group(1)
 
 SET_FIELDS = f"""FoamFile
 {{
@@ -193,16 +192,16 @@ velocity        (0 0 0);
 
 
 def one_phase(dest, pairs):
-    """The column with the one grain phase 'grains' in its lower half, set
-    by setGranularFields; pairs: 'absent' (no segregation, no diffusion),
-    'empty' (both empty) or the text put in their place."""
+    """The column with the README's monodisperse granularProperties, its one
+    grain phase 'grains' in the lower half, set by setGranularFields; pairs:
+    'absent' (no segregation, no diffusion), 'empty' (both empty) or the
+    text added to the recipe."""
     case = column(dest, ("air", "grains"))
-    replacement = {"absent": "", "empty": "segregation { }\ndiffusion { }\n"}
-    edit(case / GP, [
-        (r"\ngrains\n\{.*?\n\}\n", "\n" + ONE_PHASE_GRAINS),
-        (r"\nsegregation\n\{.*?\n\}\n\ndiffusion\n\{.*?\n\}\n",
-         "\n" + replacement.get(pairs, pairs)),
-    ], flags=re.S)
+    added = {"absent": "", "empty": "segregation { }\ndiffusion { }\n"}
+    path = case / GP
+    header = path.read_text()
+    header = header[:header.index("// * * *")]
+    path.write_text(header + readme_recipe() + added.get(pairs, pairs))
     for name in ("air", "grains"):
         (case / "0" / f"alpha.{name}").write_text(alpha_file(name, [0] * NZ))
     (case / "system" / "setGranularFieldsDict").write_text(SET_FIELDS)
