@@ -668,6 +668,20 @@ void testStratified()
     );
     expectError
     (
+        "(5.8) refused for one grain phase",
+        [&]()
+        {
+            const granularRheology r
+            (
+                parse("rhoStar 2500; Phi 0.6; etaMax 10; grains { grains"
+                    " { d 1e-3; " + table1Jop + " } }")
+            );
+            GrayChugunov(r, h, 1, parse("phibar 0.5;"));
+        },
+        {"phibar", "0.5", "bidisperse", "1 grain phase(s)", "grains"}
+    );
+    expectError
+    (
         "(5.8) refused for phibar = 1",
         [&]() { GrayChugunov(rheology, h, 1, parse("phibar 1;")); },
         {"phibar", "1"}
