@@ -175,11 +175,12 @@ def sidewall_friction(case, **entries):
 
 
 def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
-               delta_t="1e-4", adjust=False, controls=()):
+               delta_t="1e-4", adjust=False, controls=(), prepare=None):
     """tutorials/squareDrum on n x n cells in validation/results/<dest>:
     ascii and uncompressed, blockMesh and setGranularFields run.  Without
     adjust, fixed steps of delta_t; controls are (regex, replacement) pairs
-    applied to system/controlDict after these settings."""
+    applied to system/controlDict after these settings; prepare, a function
+    of the case, changes it further before blockMesh."""
     case = fresh_case("squareDrum", dest=dest, tutorial=True)
     edit(case / "system" / "drumParameters",
          [(rf"\n{key}\s+[^;]+;", f"\n{key} {value};")
@@ -190,6 +191,8 @@ def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
     if not adjust:
         settings.append((r"adjustTimeStep\s+yes;", "adjustTimeStep  no;"))
     edit(case / "system" / "controlDict", settings + list(controls))
+    if prepare:
+        prepare(case)
     shutil.copytree(case / "0.orig", case / "0")
     foam(case, "blockMesh")
     foam(case, "setGranularFields")

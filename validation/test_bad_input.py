@@ -129,6 +129,13 @@ CASES = [
      ["controlDict", "writeInterval", "0.03"]),
     ("drum-zero-axis", DM, r"axis        \(0 0 1\);", "axis        (0 0 0);",
      ["dynamicMeshDict", "axis", "(0 0 0)"]),
+    ("drum-unknown-field", CD, r"field           alpha\.small;",
+     "field           alpha.medium;",
+     ["controlDict", "field", "alpha.medium", "alpha.small"]),
+    ("invariants-unknown-phase", CD,
+     r"phases          \(alpha\.air alpha\.small alpha\.large\);",
+     "phases          (alpha.air alpha.medium);",
+     ["controlDict", "phases", "alpha.medium", "alpha.small"]),
 ]
 
 

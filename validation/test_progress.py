@@ -17,10 +17,13 @@ PHASES = ("alpha.air", "alpha.small", "alpha.large")
 
 def segregation_index(alphas, V):
     """Danckwerts' intensity of segregation of the grain phases, weighted by
-    the grain volume (granularMixture::segregationIndex)."""
-    grains = sum(alphas[1:])
+    the grain volume, from the fractions clipped at zero
+    (granularMixture::segregationIndex)."""
+    clipped = [np.maximum(a, 0) for a in alphas[1:]]
+    grains = sum(clipped)
     w = V * grains
-    c = [a / np.maximum(grains, 1e-15) for a in alphas[1:]]
+    c = [np.where(grains > 1e-150, a / np.maximum(grains, 1e-150),
+                  1 / len(clipped)) for a in clipped]
     mean = [np.sum(w * ci) / w.sum() for ci in c]
     var = sum(np.sum(w * (ci - m) ** 2) / w.sum() for ci, m in zip(c, mean))
     return np.sqrt(var / sum(m * (1 - m) for m in mean))

@@ -668,6 +668,20 @@ void testStratified()
     );
     expectError
     (
+        "(5.8) refused for one grain phase",
+        [&]()
+        {
+            const granularRheology r
+            (
+                parse("rhoStar 2500; Phi 0.6; etaMax 10; grains { grains"
+                    " { d 1e-3; " + table1Jop + " } }")
+            );
+            GrayChugunov(r, h, 1, parse("phibar 0.5;"));
+        },
+        {"phibar", "0.5", "bidisperse", "1 grain phase(s)", "grains"}
+    );
+    expectError
+    (
         "(5.8) refused for phibar = 1",
         [&]() { GrayChugunov(rheology, h, 1, parse("phibar 1;")); },
         {"phibar", "1"}
@@ -767,6 +781,32 @@ void testBadInput()
             );
         },
         {"Fick", "UtterBehringer", "constant"});
+
+    // One grain phase (monodisperse): no pair, so the pair dictionaries
+    // may be absent or empty, and an entry is refused
+    const granularRheology mono
+    (
+        parse("rhoStar 2500; Phi 0.6; etaMax 1; grains { a { d 1e-3; "
+            + table1Jop + " } }")
+    );
+    check("one grain phase: no segregation sub-dictionary, no pair",
+        grainPairModels<segregationVelocity>(parse(""), "segregation", mono)
+       .size() == 0);
+    check("one grain phase: empty diffusion sub-dictionary, no pair",
+        grainPairModels<diffusivity>(parse("diffusion { }"), "diffusion", mono)
+       .size() == 0);
+    expectError("bad input: one grain phase given a segregation pair",
+        [&mono]
+        {
+            grainPairModels<segregationVelocity> p
+            (
+                parse("segregation { aa { phases (a a); model constant; f 1; } }"),
+                "segregation", mono
+            );
+        },
+        {"segregation", "aa", "one grain phase", "(a)"});
+    expectError("bad input: two grain phases without a segregation"
+        " sub-dictionary", pairs(""), {"segregation", "small", "large"});
 }
 
 // * * * * * * * * * * * * Random-parameter properties * * * * * * * * * * * //

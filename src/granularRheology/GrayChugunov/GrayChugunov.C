@@ -39,10 +39,12 @@ Foam::GrayChugunov::GrayChugunov
     if (rheology.nGrains() != 2)
     {
         FatalIOErrorInFunction(dict)
-            << "The Gray-Chugunov composition (5.8) in " << dict.name()
-            << " is bidisperse: " << rheology.dict().name() << " has the "
-            << rheology.nGrains() << " grain phases " << rheology.names()
-            << nl << exit(FatalIOError);
+            << "Invalid value of keyword 'phibar' in dictionary "
+            << dict.name() << ": phibar = " << phibar_ << " asks for the"
+            << " Gray-Chugunov composition (5.8), which is bidisperse, but "
+            << rheology.dict().name() << " has " << rheology.nGrains()
+            << " grain phase(s) " << flatOutput(rheology.names()) << nl
+            << exit(FatalIOError);
     }
 
     const grainPairModels<segregationVelocity> segregation

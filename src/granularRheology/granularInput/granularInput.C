@@ -7,6 +7,8 @@
 #include "granularInput.H"
 #include "IOdictionary.H"
 #include "Time.H"
+#include "volFields.H"
+#include "OStringStream.H"
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
@@ -163,6 +165,39 @@ const Foam::dictionary& Foam::granularInput::coeffsDict
 )
 {
     return dict.optionalSubDict(modelType + "Coeffs");
+}
+
+
+void Foam::granularInput::requireFields
+(
+    const dictionary& dict,
+    const word& keyword,
+    const wordList& names,
+    const objectRegistry& db
+)
+{
+    for (const word& name : names)
+    {
+        if (!db.foundObject<volScalarField>(name))
+        {
+            OStringStream value;
+            if (names.size() == 1)
+            {
+                value << name;
+            }
+            else
+            {
+                value << names;
+            }
+            FatalIOErrorInFunction(dict)
+                << "Invalid value of keyword '" << keyword << "' in dictionary "
+                << dict.name() << ": " << keyword << " = "
+                << value.str().c_str() << ": no field " << name
+                << " (the fields are "
+                << flatOutput(db.sortedNames<volScalarField>()) << ")" << nl
+                << exit(FatalIOError);
+        }
+    }
 }
 
 

@@ -693,13 +693,6 @@ Foam::granularMixture::granularMixture
     readAir();
 
     const wordList& grains = rheology_.names();
-    if (grains.size() < 2)
-    {
-        FatalIOErrorInFunction(*this)
-            << "Invalid value of keyword 'grains' in dictionary " << name()
-            << ": " << grains.size() << " grain phase(s) " << grains
-            << " (at least 2 are needed)" << nl << exit(FatalIOError);
-    }
     if (grains.found(airName_))
     {
         FatalIOErrorInFunction(*this)
@@ -1082,6 +1075,17 @@ void Foam::granularMixture::checkFinite
 }
 
 
+void Foam::granularMixture::grainFractions(PtrList<scalarField>& c) const
+{
+    UPtrList<const scalarField> grainAlphas(alphas_.size() - 1);
+    for (label i = 1; i < alphas_.size(); ++i)
+    {
+        grainAlphas.set(i - 1, &alphas_[i].primitiveField());
+    }
+    rheology_.grainFractions(grainAlphas, c);
+}
+
+
 Foam::scalar Foam::granularMixture::segregationIndex() const
 {
     const label nGrains = alphas_.size() - 1;
@@ -1090,11 +1094,14 @@ Foam::scalar Foam::granularMixture::segregationIndex() const
         return -1;
     }
 
-    // Grain volume of each cell, the weight of the means
+    // The fractions clipped at zero: MULES leaves round-off below zero
+    // (-1e-13) where it undershoots, in the air above all.  The weight of a
+    // cell is its grain volume, the concentrations c^i those of the
+    // rheology, in [0, 1] and uniform where there are no grains.
     scalarField alphaG(mesh_.nCells(), Zero);
     for (label i = 1; i < alphas_.size(); ++i)
     {
-        alphaG += alphas_[i].primitiveField();
+        alphaG += max(alphas_[i].primitiveField(), scalar(0));
     }
     const scalarField w(mesh_.V().field()*alphaG);
     const scalar W = gSum(w);
@@ -1103,19 +1110,20 @@ Foam::scalar Foam::granularMixture::segregationIndex() const
         return -1;
     }
 
-    // Cells with no grains carry no weight; keep c finite there
-    const scalarField alphaGSafe(max(alphaG, SMALL));
+    PtrList<scalarField> c;
+    grainFractions(c);
     scalar variance = 0;
     scalar mixed = 0;
-    for (label i = 1; i < alphas_.size(); ++i)
+    for (const scalarField& ci : c)
     {
-        const scalarField c(alphas_[i].primitiveField()/alphaGSafe);
-        const scalar cMean = gSum(w*c)/W;
-        variance += gSum(w*sqr(c - cMean))/W;
+        const scalar cMean = gSum(w*ci)/W;
+        variance += gSum(w*sqr(ci - cMean))/W;
         mixed += cMean*(1 - cMean);
     }
 
-    return mixed > SMALL ? Foam::sqrt(variance/mixed) : 0;
+    // variance sums terms >= 0 (the weights are); max keeps the root real
+    // whatever the round-off
+    return mixed > SMALL ? Foam::sqrt(max(variance, scalar(0))/mixed) : 0;
 }
 
 

@@ -7,6 +7,7 @@
 #include "granularInvariants.H"
 #include "volFields.H"
 #include "surfaceFields.H"
+#include "granularInput.H"
 #include "addToRunTimeSelectionTable.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
@@ -125,18 +126,8 @@ bool Foam::functionObjects::granularInvariants::read(const dictionary& dict)
             << "phases = () in " << dict.name() << ": name the phase"
             << " fractions to monitor" << nl << exit(FatalIOError);
     }
+    granularInput::requireFields(dict, "phases", phases_, obr_);
 
-    forAll(phases_, i)
-    {
-        if (!foundObject<volScalarField>(phases_[i]))
-        {
-            FatalIOErrorInFunction(dict)
-                << "phases in " << dict.name() << ": no field "
-                << phases_[i] << " (the fields are "
-                << mesh_.names<volScalarField>() << ")" << nl
-                << exit(FatalIOError);
-        }
-    }
     return true;
 }
 

@@ -55,14 +55,8 @@ void Foam::functionObjects::rotatingDrum::seed()
         }
     }
 
-    if (foundObject<volScalarField>(fieldName_))
-    {
-        times_.append(firstTime_);
-        samples_.append
-        (
-            lookupObject<volScalarField>(fieldName_).primitiveField()
-        );
-    }
+    times_.append(firstTime_);
+    samples_.append(lookupObject<volScalarField>(fieldName_).primitiveField());
 
     Log << type() << " " << name() << ": " << times_.size()
         << " sample(s) of " << fieldName_ << " to start J of (7.6)" << endl;
@@ -233,6 +227,8 @@ bool Foam::functionObjects::rotatingDrum::read(const dictionary& dict)
 
     fieldName_ = dict.get<word>("field");
     airName_ = dict.getOrDefault<word>("air", "alpha.air");
+    granularInput::requireFields(dict, "field", {fieldName_}, obr_);
+    granularInput::requireFields(dict, "air", {airName_}, obr_);
 
     const scalar omega = mag(rotation_.omega(time_.value()));
     if (!dict.found("period") && omega < SMALL)
