@@ -984,13 +984,8 @@ void Foam::granularMixture::correctRheology
     shearRate_.primitiveFieldRef() = 2*normD;
 
     // Grain-volume fractions and (3.1)
-    UPtrList<const scalarField> grainAlphas(alphas_.size() - 1);
-    for (label i = 1; i < alphas_.size(); ++i)
-    {
-        grainAlphas.set(i - 1, &alphas_[i].primitiveField());
-    }
     PtrList<scalarField> w;
-    rheology_.grainFractions(grainAlphas, w);
+    grainFractions(w);
     UPtrList<const scalarField> wc(w.size());
     forAll(w, k)
     {
