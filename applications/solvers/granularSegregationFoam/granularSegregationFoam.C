@@ -144,12 +144,9 @@ int main(int argc, char *argv[])
             }
 
             // Picard: rheology of the previous iterate, then the phases
-            if (coupling.correctMixture())
-            {
-                mixture.correctRheology(p, p_rgh.needReference());
-                mixture.solve();
-                rho = mixture.rho();
-            }
+            mixture.correctRheology(p, p_rgh.needReference());
+            mixture.solve();
+            rho = mixture.rho();
 
             #include "UEqn.H"
 

@@ -23,7 +23,6 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     pimple_(pimple),
     coupling_(pressureCoupling::PISO),
     tolerance_(0),
-    freezeMixture_(false),
     corr_(0),
     final_(false),
     nextFinal_(false),
@@ -38,11 +37,16 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
         Info<< ", ended once the initial residual of p_rgh is below "
             << tolerance_;
     }
-    if (freezeMixture_)
-    {
-        Info<< "; phases and rheology in the first outer iteration only";
-    }
     Info<< nl << endl;
+
+    if (pimple_.nCorrPIMPLE() > 1)
+    {
+        WarningInFunction
+            << "nOuterCorrectors " << pimple_.nCorrPIMPLE() << " in "
+            << pimple_.dict().name() << ": outer iterations diverged on the"
+            << " chute, the square drum and the periodic layer with the"
+            << " implicit stress (1 is the tested setting)" << endl;
+    }
 }
 
 
@@ -56,8 +60,6 @@ void Foam::granularCoupling::read()
     (
         "pressureCoupling", dict, pressureCoupling::PISO
     );
-
-    freezeMixture_ = dict.getOrDefault<bool>("freezeMixture", false);
 
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
     if (nCorr < 1)
