@@ -16,9 +16,10 @@ Description
 
     Derived from multiphaseInterFoam (v1912): its PIMPLE loop, dynamic
     meshes and MPI, with a pressure-velocity coupling (4.1)-(4.2) of PISO
-    or SIMPLEC correctors (granularCoupling, UEqn.H, pEqn.H); the phases are transported with MULES by
-    granularMixture, with pairwise segregation (2.13) and Maxwell-Stefan
-    diffusion (2.15) in the place of interface compression, the air
+    or SIMPLEC correctors (granularCoupling, UEqn.H, pCoefficients.H,
+    pEqn.H); the phases are transported with MULES by granularMixture,
+    with pairwise segregation (2.13) and Maxwell-Stefan diffusion (2.15)
+    in the place of interface compression, the air
     segregated out of the grains (4.3)-(4.5), and the mu(I) viscosity of
     libgranularRheology coupled by Picard iteration (4.7): every outer
     corrector re-evaluates the rheology from the latest U and p.
@@ -68,10 +69,10 @@ int main(int argc, char *argv[])
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "createFields.H"
-
-    granularCoupling coupling(pimple);
     #include "initCorrectPhi.H"
     #include "createUfIfPresent.H"
+
+    granularCoupling coupling(pimple);
 
     // fvSolution PIMPLE { viscousStress explicit | implicit; }: does the
     // viscous part of (4.11) limit the time step?
