@@ -112,10 +112,15 @@ def pvbatch(display, case, *args):
     state = case / "paraviewState.py"
     assert state.is_file(), f"no {state}"
     name, log = display
-    res = subprocess.run(
-        [executable("pvbatch"), str(state), *args], capture_output=True,
-        text=True, timeout=300, env=dict(os.environ, DISPLAY=name))
-    res.stderr += f"\n[Xvfb {name}: {log.read_text()[-1000:]}]"
+    for attempt in (1, 2):
+        res = subprocess.run(
+            [executable("pvbatch"), str(state), *args], capture_output=True,
+            text=True, timeout=300, env=dict(os.environ, DISPLAY=name))
+        # Debian's pvbatch aborts now and then in creating its X window,
+        # before the state runs (seen on a loaded machine): once more then
+        if res.returncode == 0 or "CreateAWindow" not in res.stderr:
+            break
+    res.stderr += f"\n[Xvfb {name}, attempt {attempt}: {log.read_text()[-1000:]}]"
     return res
 
 
