@@ -118,7 +118,7 @@ def pvbatch(display, case, *args):
             text=True, timeout=300, env=dict(os.environ, DISPLAY=name))
         # Debian's pvbatch aborts now and then in creating its X window,
         # before the state runs (seen on a loaded machine): once more then
-        if res.returncode == 0 or "CreateAWindow" not in res.stderr:
+        if res.returncode == 0 or "CreateAWindow" not in res.stdout + res.stderr:
             break
     res.stderr += f"\n[Xvfb {name}, attempt {attempt}: {log.read_text()[-1000:]}]"
     return res
