@@ -84,6 +84,37 @@ namespace
 }
 
 
+const Foam::dictionary& Foam::granularInput::subDict
+(
+    const dictionary& dict,
+    const word& keyword,
+    const string& holds
+)
+{
+    const entry* e = dict.findEntry(keyword, keyType::LITERAL);
+    if (!e)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Missing sub-dictionary '" << keyword << "' in " << dict.name()
+            << " (" << holds.c_str() << ")" << nl << exit(FatalIOError);
+    }
+    if (!e->isDict())
+    {
+        OStringStream value;
+        for (const token& t : e->stream())
+        {
+            value << (value.str().empty() ? "" : " ") << t;
+        }
+        FatalIOErrorInFunction(dict)
+            << "Invalid entry '" << keyword << "' in " << dict.name() << ": "
+            << keyword << " = " << value.str().c_str()
+            << " is not a sub-dictionary (" << holds.c_str() << ")" << nl
+            << exit(FatalIOError);
+    }
+    return e->dict();
+}
+
+
 Foam::dimensionedScalar Foam::granularInput::readPositive
 (
     const dictionary& dict,

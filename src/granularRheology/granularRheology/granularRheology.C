@@ -50,7 +50,10 @@ Foam::granularRheology::granularRheology(const dictionary& dict)
         granularInput::invalid(dict, "Phi", Phi_.value(), "must be <= 1");
     }
 
-    const dictionary& grainsDict = dict.subDict("grains");
+    const dictionary& grainsDict = granularInput::subDict
+    (
+        dict, "grains", "one sub-dictionary per grain phase"
+    );
     names_ = grainsDict.toc();
 
     if (names_.empty())

@@ -100,14 +100,10 @@ namespace
 
 void Foam::granularMixture::readAir()
 {
-    if (!isDict("air"))
-    {
-        FatalIOErrorInFunction(*this)
-            << "Missing sub-dictionary 'air' in " << name()
-            << " (name, rho, eta and the sharpening of the air)" << nl
-            << exit(FatalIOError);
-    }
-    const dictionary& dict = subDict("air");
+    const dictionary& dict = granularInput::subDict
+    (
+        *this, "air", "name, rho, eta and the sharpening of the air"
+    );
 
     airName_ = dict.getOrDefault<word>("name", "air");
     rhoAir_ = granularInput::readPositive(dict, "rho", dimDensity);
@@ -546,6 +542,13 @@ void Foam::granularMixture::solveAlphas()
     // limiting can remove that part, and the passes would repeat in vain.
     const label nPasses =
         mesh_.solverDict("alpha").getOrDefault<label>("nLimitSumPasses", 10);
+    if (nPasses < 1)
+    {
+        FatalIOErrorInFunction(mesh_.solverDict("alpha"))
+            << "Invalid value of keyword 'nLimitSumPasses' in dictionary "
+            << mesh_.solverDict("alpha").name() << ": nLimitSumPasses = "
+            << nPasses << " (>= 1)" << nl << exit(FatalIOError);
+    }
     PtrList<surfaceScalarField> upwindPhis(nPhases);
     forAll(alphas_, i)
     {
@@ -561,7 +564,7 @@ void Foam::granularMixture::solveAlphas()
         upwindExcess.set(i, boundsExcess(alphas_[i], upwindPhis[i]));
     }
     label nDone = 0;
-    for (label pass = 0; pass < max(nPasses, label(1)); ++pass)
+    for (label pass = 0; pass < nPasses; ++pass)
     {
         forAll(alphas_, i)
         {
