@@ -108,6 +108,8 @@ CASES = [
     ("unknown-viscous-stress", FV, r"viscousStress       implicit;",
      "viscousStress       semi;",
      ["fvSolution", "viscousStress", "semi"]),
+    ("d-not-a-number", GP, r"d               1e-3;", "d               abc;",
+     ["granularProperties", "d", "abc", "number"]),
     ("grains-not-a-dictionary", GP, r"\ngrains\n\{.*?\n\}\n", "\ngrains 5;\n",
      ["granularProperties", "grains", "5", "sub-dictionary"]),
     ("air-not-a-dictionary", GP, r"\nair\n\{.*?\n\}\n", "\nair 1;\n",

@@ -33,6 +33,17 @@ void Foam::granularInput::invalid
 
 namespace
 {
+    // The tokens of an entry as written, separated by spaces
+    Foam::string entryText(const Foam::entry& e)
+    {
+        Foam::OStringStream text;
+        for (const Foam::token& t : e.stream())
+        {
+            text << (text.str().empty() ? "" : " ") << t;
+        }
+        return text.str();
+    }
+
     Foam::dimensionedScalar readChecked
     (
         const Foam::dictionary& dict,
@@ -48,6 +59,18 @@ namespace
             FatalIOErrorInFunction(dict)
                 << "Missing keyword '" << keyword << "' in dictionary "
                 << dict.name() << nl << exit(FatalIOError);
+        }
+
+        // A dimensioned scalar ends with its value: a word there ('abc')
+        // would be read as a missing number, "attempt to read beyond EOF"
+        const entry& e = dict.lookupEntry(keyword, keyType::LITERAL);
+        if (e.isDict() || !e.stream().size() || !e.stream().last().isNumber())
+        {
+            FatalIOErrorInFunction(dict)
+                << "Invalid value of keyword '" << keyword << "' in dictionary "
+                << dict.name() << ": " << keyword << " = "
+                << (e.isDict() ? string("a sub-dictionary") : entryText(e)).c_str()
+                << " (a number is needed)" << nl << exit(FatalIOError);
         }
 
         const dimensionedScalar value(keyword, dims, dict);
@@ -100,14 +123,9 @@ const Foam::dictionary& Foam::granularInput::subDict
     }
     if (!e->isDict())
     {
-        OStringStream value;
-        for (const token& t : e->stream())
-        {
-            value << (value.str().empty() ? "" : " ") << t;
-        }
         FatalIOErrorInFunction(dict)
             << "Invalid entry '" << keyword << "' in " << dict.name() << ": "
-            << keyword << " = " << value.str().c_str()
+            << keyword << " = " << entryText(*e).c_str()
             << " is not a sub-dictionary (" << holds.c_str() << ")" << nl
             << exit(FatalIOError);
     }
