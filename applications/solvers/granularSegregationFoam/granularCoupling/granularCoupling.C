@@ -5,6 +5,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "granularCoupling.H"
+#include "granularInput.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
@@ -64,20 +65,17 @@ void Foam::granularCoupling::read()
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
     if (nCorr < 1)
     {
-        FatalIOErrorInFunction(dict)
-            << "Invalid value of keyword 'nCorrectors' in dictionary "
-            << dict.name() << ": nCorrectors = " << nCorr << " (>= 1)" << nl
-            << exit(FatalIOError);
+        granularInput::invalid(dict, "nCorrectors", nCorr, ">= 1");
     }
 
     tolerance_ = dict.getOrDefault<scalar>("pRghTolerance", 0);
     if (tolerance_ < 0 || tolerance_ >= 1)
     {
-        FatalIOErrorInFunction(dict)
-            << "Invalid value of keyword 'pRghTolerance' in dictionary "
-            << dict.name() << ": pRghTolerance = " << tolerance_
-            << " (0 <= pRghTolerance < 1; 0: run every corrector)" << nl
-            << exit(FatalIOError);
+        granularInput::invalid
+        (
+            dict, "pRghTolerance", tolerance_,
+            "0 <= pRghTolerance < 1; 0: run every corrector"
+        );
     }
 }
 

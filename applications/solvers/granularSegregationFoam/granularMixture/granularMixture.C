@@ -544,10 +544,10 @@ void Foam::granularMixture::solveAlphas()
         mesh_.solverDict("alpha").getOrDefault<label>("nLimitSumPasses", 10);
     if (nPasses < 1)
     {
-        FatalIOErrorInFunction(mesh_.solverDict("alpha"))
-            << "Invalid value of keyword 'nLimitSumPasses' in dictionary "
-            << mesh_.solverDict("alpha").name() << ": nLimitSumPasses = "
-            << nPasses << " (>= 1)" << nl << exit(FatalIOError);
+        granularInput::invalid
+        (
+            mesh_.solverDict("alpha"), "nLimitSumPasses", nPasses, ">= 1"
+        );
     }
     PtrList<surfaceScalarField> upwindPhis(nPhases);
     forAll(alphas_, i)
@@ -1149,10 +1149,7 @@ Foam::label Foam::granularMixture::maxAlphaSubCycles() const
     const label nMax = dict.getOrDefault<label>("maxAlphaSubCycles", 0);
     if (dict.found("maxAlphaSubCycles") && nMax < 1)
     {
-        FatalIOErrorInFunction(dict)
-            << "Invalid value of keyword 'maxAlphaSubCycles' in dictionary "
-            << dict.name() << ": maxAlphaSubCycles = " << nMax << " (>= 1)"
-            << nl << exit(FatalIOError);
+        granularInput::invalid(dict, "maxAlphaSubCycles", nMax, ">= 1");
     }
     if (nMax && dict.getOrDefault<label>("nAlphaSubCycles", 1) != 1)
     {
@@ -1185,10 +1182,7 @@ Foam::label Foam::granularMixture::nAlphaSubCycles() const
     const label nSub = dict.getOrDefault<label>("nAlphaSubCycles", 1);
     if (nSub < 1)
     {
-        FatalIOErrorInFunction(dict)
-            << "Invalid value of keyword 'nAlphaSubCycles' in dictionary "
-            << dict.name() << ": nAlphaSubCycles = "
-            << nSub << " (>= 1)" << nl << exit(FatalIOError);
+        granularInput::invalid(dict, "nAlphaSubCycles", nSub, ">= 1");
     }
     return nSub;
 }
