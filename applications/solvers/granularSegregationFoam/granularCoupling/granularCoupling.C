@@ -5,6 +5,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "granularCoupling.H"
+#include "fvMatrices.H"
 #include "granularInput.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
@@ -80,17 +81,67 @@ void Foam::granularCoupling::read()
 }
 
 
+Foam::tmp<Foam::volScalarField> Foam::granularCoupling::followingH1
+(
+    const fvVectorMatrix& UEqn,
+    const volScalarField& rho
+)
+{
+    const fvMesh& mesh = rho.mesh();
+
+    // The field with the dimensions and patches of fvMatrix::H1
+    tmp<volScalarField> tH1(UEqn.H1());
+    scalarField& H1 = tH1.ref().primitiveFieldRef();
+    H1 = Zero;
+
+    const labelUList& own = mesh.owner();
+    const labelUList& nei = mesh.neighbour();
+    const scalarField& lower = UEqn.lower();
+    const scalarField& upper = UEqn.upper();
+
+    forAll(own, facei)
+    {
+        const label o = own[facei];
+        const label n = nei[facei];
+        H1[n] -= lower[facei]*min(scalar(1), rho[n]/rho[o]);
+        H1[o] -= upper[facei]*min(scalar(1), rho[o]/rho[n]);
+    }
+
+    // Processor and cyclic neighbours, with fvMatrix::H1's coefficient
+    forAll(rho.boundaryField(), patchi)
+    {
+        const fvPatchScalarField& rhop = rho.boundaryField()[patchi];
+        if (!rhop.coupled() || rhop.empty())
+        {
+            continue;
+        }
+        const scalarField rhoN(rhop.patchNeighbourField());
+        const scalarField a(UEqn.boundaryCoeffs()[patchi].component(0));
+        const labelUList& cells = mesh.boundary()[patchi].faceCells();
+        forAll(cells, i)
+        {
+            H1[cells[i]] += a[i]*min(scalar(1), rho[cells[i]]/rhoN[i]);
+        }
+    }
+
+    H1 /= mesh.V();
+    tH1.ref().correctBoundaryConditions();
+
+    return tH1;
+}
+
+
 Foam::tmp<Foam::volScalarField> Foam::granularCoupling::pressureCoefficient
 (
+    const fvVectorMatrix& UEqn,
     const volScalarField& rAU,
-    const volScalarField& H1,
     const volScalarField& rho
-) const
+)
 {
     return tmp<volScalarField>::New
     (
         "rAtU",
-        1.0/max(1.0/rAU - H1, rho/rho.time().deltaT())
+        1.0/max(1.0/rAU - followingH1(UEqn, rho), rho/rho.time().deltaT())
     );
 }
 
