@@ -55,7 +55,8 @@ def _set_end(case, path, key, value):
 
 def _restart_pair(make, name, end_file, half, end):
     """Two copies of the case make(dest) returns: one runs to `end`, the
-    other to `half`, stops, and restarts from there to `end`."""
+    other to `half`, stops, and restarts from there (startFrom latestTime)
+    to `end`.  The restart must start at `half`: its log says so."""
     whole = make(f"{HERE}/restart-{name}-whole")
     foam(whole, "granularSegregationFoam")
     split = make(f"{HERE}/restart-{name}-split")
@@ -63,7 +64,12 @@ def _restart_pair(make, name, end_file, half, end):
     foam(split, "granularSegregationFoam")
     assert (split / half).is_dir()
     _set_end(split, end_file, "endTime", end)
-    foam(split, "granularSegregationFoam")
+    _set_end(split, "system/controlDict", "startFrom", "latestTime")
+    log = foam_output(split, "granularSegregationFoam")[0]
+    first = re.search(r"\nTime = (\S+)\n", log)
+    assert first and float(first.group(1)) > float(half), (
+        f"the second run did not continue from {half}: its first step is "
+        f"{first.group(1) if first else None}")
     return whole, split
 
 
@@ -83,6 +89,33 @@ def _layer(dest):
     return case
 
 
+def _layer_implicit(dest):
+    """The layer at 28 degrees with the implicit stress (momentum
+    predictor, the default coupling), adjustable steps."""
+    case = _layer(dest)
+    zeta = np.radians(28.0)
+    edit(case / "constant" / "g", [(r"value\s+\([^)]*\);",
+          f"value ({9.81*np.sin(zeta):.15g} 0 {-9.81*np.cos(zeta):.15g});")])
+    edit(case / "system" / "fvSolution", [
+        (r"momentumPredictor\s+\w+;",
+         "momentumPredictor yes;\n    viscousStress   implicit;")])
+    return case
+
+
+def _column(dest):
+    """tutorials/segregationColumn, ascii at 17 digits, to 0.2 s, written
+    every 0.1 s (adjustable steps, an open top)."""
+    case = fresh_case("segregationColumn", dest=dest, tutorial=True)
+    edit(case / "system" / "columnParameters", [
+        (r"\nendTime\s+[^;]+;", "\nendTime 0.2;"),
+        (r"\nwriteInterval\s+[^;]+;", "\nwriteInterval 0.1;")])
+    edit(case / "system" / "controlDict", FULL_PRECISION)
+    shutil.copytree(case / "0.orig", case / "0")
+    foam(case, "blockMesh")
+    foam(case, "setGranularFields")
+    return case
+
+
 def _drum(dest, adjust):
     """The drum on 12 x 12 cells, ascii at 17 digits, written every 0.1 s:
     fixed steps of 5e-3 s, or the tutorial's adjustable step."""
@@ -95,29 +128,33 @@ def _drum(dest, adjust):
 STATE = {"U", "Uf", "p", "p_rgh", "phi", "rAU", "meshPhi"} | set(PHASES)
 
 
-@pytest.mark.parametrize("which", ["layer", "drum", "drum-adjustable"])
+# name: (make, dictionary with endTime, half, end)
+RESTARTS = {
+    "layer": (_layer, "system/controlDict", "0.02", "0.04"),
+    "layer-implicit": (_layer_implicit, "system/controlDict", "0.02", "0.04"),
+    "column": (_column, "system/columnParameters", "0.1", "0.2"),
+    "drum": (lambda d: _drum(d, False), "system/drumParameters", "0.2", "0.4"),
+    "drum-adjustable": (lambda d: _drum(d, True), "system/drumParameters",
+                        "0.2", "0.4"),
+}
+
+
+@pytest.mark.parametrize("which", list(RESTARTS))
 def test_restart(foam_env, which):
-    """Stop at a written time, restart: with fixed steps every field at the
-    end equals the uninterrupted run's to 1e-10 relative (fields written at
-    17 digits; the solver continues from uniform/time's value, not the
-    directory name).  With the adjustable step, v1912's Time rounds the
-    step to the next write differently after a restart (it counts from the
-    start time), so the last bits of the steps differ; the state the solver
-    reads still agrees to 1e-10."""
-    if which == "layer":
-        whole, split = _restart_pair(_layer, which, "system/controlDict",
-                                     "0.02", "0.04")
-        end = "0.04"
-    else:
-        adjust = which == "drum-adjustable"
-        whole, split = _restart_pair(lambda d: _drum(d, adjust), which,
-                                     "system/drumParameters", "0.2", "0.4")
-        end = "0.4"
+    """Stop at a written time, restart from it (startFrom latestTime): at
+    the end every field the solver reads at a restart (U, p, p_rgh, every
+    phase fraction; with the moving mesh Uf, meshPhi and rAU) equals the
+    uninterrupted run's to 1e-10 of its largest value (fields written at 17
+    digits), in open domains (the layer with the explicit and the implicit
+    stress, the column) and in the turning drum, with fixed and adjustable
+    steps.  phi is left out: in one column its values are round-off
+    (1e-20 m^3/s), whose relative difference means nothing."""
+    make, end_file, half, end = RESTARTS[which]
+    whole, split = _restart_pair(make, which, end_file, half, end)
     diff = _max_relative_difference(whole, split, end)
     write_results(RESULTS / HERE, f"restart-{which}", diff)
-    assert {"U", "p", "p_rgh", "phi", "alpha.small"} <= set(diff), diff
-    checked = {k: v for k, v in diff.items()
-               if which != "drum-adjustable" or k in STATE}
+    assert {"U", "p", "p_rgh", "alpha.air", "alpha.small"} <= set(diff), diff
+    checked = {k: v for k, v in diff.items() if k in STATE - {"phi"}}
     assert max(checked.values()) < 1e-10, checked
 
 

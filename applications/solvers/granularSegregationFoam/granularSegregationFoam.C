@@ -100,6 +100,13 @@ int main(int argc, char *argv[])
     while (runTime.run())
     {
         #include "readDyMControls.H"
+
+        // The time step is set from the state at the start of the step:
+        // its rheology and segregation rate, as a restart from the state
+        // written here sees them (createFields.H)
+        mixture.correctRheology(p, p_rgh.needReference());
+        mixture.updateSegregationRate();
+
         #include "granularCourantNo.H"
         #include "alphaCourantNo.H"
         #include "transportCourantNo.H"
@@ -144,8 +151,13 @@ int main(int argc, char *argv[])
                 }
             }
 
-            // Picard: rheology of the previous iterate, then the phases
-            mixture.correctRheology(p, p_rgh.needReference());
+            // Picard: rheology of the previous iterate (at the first
+            // iteration of a fixed mesh, the one computed before the time
+            // step from the same fields), then the phases
+            if (!pimple.firstIter() || mesh.changing())
+            {
+                mixture.correctRheology(p, p_rgh.needReference());
+            }
             mixture.solve();
             rho = mixture.rho();
 

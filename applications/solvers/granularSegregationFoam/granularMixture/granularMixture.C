@@ -417,6 +417,56 @@ bool Foam::granularMixture::outOfBounds
 }
 
 
+Foam::tmp<Foam::scalarField> Foam::granularMixture::segregationRate
+(
+    const List<labelPair>& pairs,
+    const PtrList<surfaceScalarField>& phirs
+) const
+{
+    auto trate = tmp<scalarField>::New(mesh_.nCells(), Zero);
+    scalarField& rate = trate.ref();
+    forAll(pairs, k)
+    {
+        // The flux f phi^i phi^j moves at most at f (phi^i + phi^j): a grain
+        // pair's rate is weighted by its fractions (the larger of the two
+        // cells of a face), so a law unbounded where there are no grains,
+        // Trewhela's (3.9) with C = 0 as p -> 0, does not hold the step in
+        // the air.  The air pairs (f a constant) keep the plain bound.
+        if (k < segregation_.size())
+        {
+            const volScalarField aij
+            (
+                alphas_[pairs[k].first()] + alphas_[pairs[k].second()]
+            );
+            rate = max
+            (
+                rate,
+                fvc::surfaceSum
+                (
+                    mag(phirs[k])
+                   *localMax<scalar>(mesh_).interpolate(aij)
+                )().primitiveField()
+            );
+        }
+        else
+        {
+            rate = max(rate, fvc::surfaceSum(mag(phirs[k]))().primitiveField());
+        }
+    }
+    rate *= 0.5/mesh_.V().field();
+    return trate;
+}
+
+
+void Foam::granularMixture::updateSegregationRate()
+{
+    List<labelPair> pairs;
+    PtrList<surfaceScalarField> phirs;
+    relativeFluxes(pairs, phirs);
+    segregationRate_ = segregationRate(pairs, phirs);
+}
+
+
 void Foam::granularMixture::solveAlphas()
 {
     const word alphaScheme("div(phi,alpha)");
@@ -463,7 +513,6 @@ void Foam::granularMixture::solveAlphas()
     PtrList<surfaceScalarField> phirs;
     relativeFluxes(pairs, phirs);
 
-    scalarField rate(mesh_.nCells(), Zero);
     forAll(pairs, k)
     {
         const volScalarField& ai = alphas_[pairs[k].first()];
@@ -479,31 +528,8 @@ void Foam::granularMixture::solveAlphas()
             relPhis[pairs[k].first()] += F;
             relPhis[pairs[k].second()] -= F;
         }
-
-        // The flux f phi^i phi^j moves at most at f (phi^i + phi^j): a grain
-        // pair's rate is weighted by its fractions (the larger of the two
-        // cells of a face), so a law unbounded where there are no grains,
-        // Trewhela's (3.9) with C = 0 as p -> 0, does not hold the step in
-        // the air.  The air pairs (f a constant) keep the plain bound.
-        if (k < segregation_.size())
-        {
-            const volScalarField aij(ai + aj);
-            rate = max
-            (
-                rate,
-                fvc::surfaceSum
-                (
-                    mag(phirs[k])
-                   *localMax<scalar>(mesh_).interpolate(aij)
-                )().primitiveField()
-            );
-        }
-        else
-        {
-            rate = max(rate, fvc::surfaceSum(mag(phirs[k]))().primitiveField());
-        }
     }
-    segregationRate_ = 0.5*rate/mesh_.V().field();
+    segregationRate_ = segregationRate(pairs, phirs);
 
     // (2.15): D^i = D_ij (phi^j grad phi^i - phi^i grad phi^j), a flux -D^i
     for (label k = 0; k < diffusion_.size(); ++k)
@@ -766,6 +792,10 @@ Foam::granularMixture::granularMixture
     }
 
     calcG();
+
+    // The density of the initial fractions: createFields.H builds p as
+    // p_rgh + rho*gh before the first rheology, which evaluates with that p
+    calcMixture();
 
     gPeriodic_ = periodicGravity();
     if (mag(gPeriodic_) > 0)
