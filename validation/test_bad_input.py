@@ -97,6 +97,9 @@ CASES = [
     ("alpha-above-one", "0/alpha.small", INTERNAL,
      "internalField   uniform 1.5;",
      ["alpha.small", "1.5"]),
+    ("alpha-wrong-dimensions", "0/alpha.small", r"dimensions\s+\[[^\]]*\];",
+     "dimensions      [0 1 0 0 0 0 0];",
+     ["0/alpha.small", "dimensions", "[0 1 0 0 0 0 0]", "dimensionless"]),
     ("alphas-not-summing", "0/alpha.air", INTERNAL,
      "internalField   uniform 0.5;",
      ["sum", "1"]),
@@ -191,6 +194,22 @@ def test_refused(base, tmp_path, name, path, pattern, replacement, words):
               for t in _times(case)}
 
     _assert_refused(case, name, words, before)
+
+
+def test_unread_phase_file_warns(base, tmp_path):
+    """A 0/alpha.<name> file that matches no phase (a misspelt or a
+    left-over phase) is not read, and the log says so, naming the file;
+    the run goes on."""
+    case = tmp_path / "unread-phase-file"
+    shutil.copytree(base, case)
+    shutil.copy(case / "0" / "alpha.small", case / "0" / "alpha.smal")
+    rc, out = _solve(case)
+    assert rc == 0, out[-2000:]
+    warnings = [w for w in re.findall(r"--> FOAM Warning :.*?\n\n", out, re.S)
+                if "is not read" in w]
+    assert len(warnings) == 1, out[:4000]
+    assert "0/alpha.smal\" is not read" in warnings[0], warnings[0]
+    assert "alpha.small" in warnings[0], warnings[0]
 
 
 # The sidewall friction (constant/fvOptions, granularSidewallFriction):

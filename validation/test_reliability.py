@@ -7,11 +7,13 @@ differences are written to validation/results/reliability/*.json.
 """
 import re
 import shutil
+import subprocess
+import time
 
 import numpy as np
 import pytest
 
-from cases import (RESULTS, edit, foam, foam_output, fresh_case, run,
+from cases import (NUMBER, RESULTS, edit, foam, foam_output, fresh_case, run,
                    set_decomposition, small_drum, write_results)
 from chute.post import cell_centres, read_field
 from squareDrum import post
@@ -290,3 +292,82 @@ def test_degenerate_state(foam_env, name):
         # The bed at rest stays at rest: measured 2e-10 m/s, the pressure
         # solver's residual flow (the turning drum's walls move 0.063 m/s)
         assert numbers["max_speed"] < 1e-6, numbers["max_speed"]
+
+
+def _viscous_parts(log):
+    """The viscous part of (4.11) of each step in a solver log."""
+    return [float(v) for v in re.findall(r"\nCFL \(4\.11\) max: .*? viscous "
+                                         rf"= ({NUMBER})", log)]
+
+
+# What the solver logs once it has read granularProperties again
+REREAD = "the air, the rheology, the segregation and the diffusion laws"
+
+
+def test_granular_properties_read_while_running(foam_env):
+    """With runTimeModifiable, an edit of constant/granularProperties
+    during a run takes effect: etaMax halved from 300 to 150 Pa s halves the
+    viscous part of (4.11), which the capped viscosity of the drum's static
+    grains sets, from the step after the log says it re-read the file; a
+    grain phase renamed during the run stops it with a FatalIOError naming
+    the dictionary, without a stack trace."""
+    case = small_drum(f"{HERE}/modifiable", n=8, end_time="100",
+                      write_interval="100", delta_t="1e-4",
+                      controls=[(r"\nrunTimeModifiable\s+\w+;",
+                                 "\nrunTimeModifiable yes;\n"
+                                 "OptimisationSwitches "
+                                 "{ fileModificationSkew 0; }")])
+    props = case / "constant" / "granularProperties"
+
+    def run_and_edit(old, new):
+        log_path = case / "log.modifiable"
+        with open(log_path, "w") as log:
+            proc = subprocess.Popen(["granularSegregationFoam"], cwd=case,
+                                    stdout=log, stderr=subprocess.STDOUT)
+            try:
+                _wait_for(log_path, proc, lambda t: t.count("\nTime = ") >= 20)
+                text = props.read_text()
+                assert old in text, old
+                props.write_text(text.replace(old, new, 1))
+                _wait_for(log_path, proc, lambda t: REREAD in t
+                          or "FOAM FATAL" in t or proc.poll() is not None)
+                _wait_for(log_path, proc, lambda t: proc.poll() is not None
+                          or t.split(REREAD, 1)[-1].count("\nTime = ")
+                          >= 5)
+            finally:
+                if proc.poll() is None:
+                    proc.kill()
+                proc.wait()
+        return proc.returncode, log_path.read_text()
+
+    rc, log = run_and_edit("etaMax          $etaMax;", "etaMax          150;")
+    assert REREAD in log and "FOAM FATAL" not in log, log[-3000:]
+    before, after = log.split(REREAD, 1)
+    v0, v1 = _viscous_parts(before)[-1], _viscous_parts(after)
+    assert len(v1) >= 2, after[-2000:]
+    assert v1[-1] == pytest.approx(0.5 * v0, rel=0.01), (v0, v1)
+    write_results(RESULTS / HERE, "modifiable",
+                  {"viscous_part_before": v0, "viscous_part_after": v1[-1]})
+
+    props.write_text(props.read_text().replace("etaMax          150;",
+                                               "etaMax          $etaMax;"))
+    rc, log = run_and_edit("grains\n{\n    small\n", "grains\n{\n    fine\n")
+    assert rc == 1, (rc, log[-3000:])
+    message = log[log.index("FOAM FATAL IO ERROR"):]
+    assert "grains" in message and "changed during the run" in message, \
+        message[:2000]
+    assert "printStack" not in log and "#0 " not in log, log[-3000:]
+
+
+def _wait_for(log_path, proc, ready, timeout=120):
+    """Poll the log until ready(text) holds; fail after timeout seconds."""
+    start = time.monotonic()
+    while time.monotonic() - start < timeout:
+        text = log_path.read_text()
+        if ready(text):
+            return text
+        if proc.poll() is not None and not ready(text):
+            raise AssertionError(f"the solver ended (exit {proc.returncode})"
+                                 f":\n{text[-3000:]}")
+        time.sleep(0.2)
+    raise AssertionError(f"timed out:\n{log_path.read_text()[-3000:]}")

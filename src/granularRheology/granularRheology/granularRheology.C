@@ -101,6 +101,33 @@ Foam::granularRheology::granularRheology(const dictionary& dict)
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
+
+void Foam::granularRheology::read(const dictionary& dict)
+{
+    const dictionary& grainsDict = granularInput::subDict
+    (
+        dict, "grains", "one sub-dictionary per grain phase"
+    );
+    if (grainsDict.toc() != names_)
+    {
+        FatalIOErrorInFunction(grainsDict)
+            << "The grain phases of " << grainsDict.name() << " changed"
+            << " during the run, from " << names_ << " to "
+            << grainsDict.toc() << ": the phase fields are read at the"
+            << " start only; stop the run and start it again" << nl
+            << exit(FatalIOError);
+    }
+    granularRheology updated(dict);
+    dict_ = updated.dict_;
+    rhoStar_ = updated.rhoStar_;
+    Phi_ = updated.Phi_;
+    etaMax_ = updated.etaMax_;
+    pMin_ = updated.pMin_;
+    rule_ = updated.rule_;
+    d_ = updated.d_;
+    laws_.transfer(updated.laws_);
+}
+
 void Foam::granularRheology::grainFractions
 (
     const UPtrList<const scalarField>& alphas,

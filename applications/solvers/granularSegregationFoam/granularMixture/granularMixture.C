@@ -195,6 +195,45 @@ void Foam::granularMixture::checkFractions() const
 }
 
 
+void Foam::granularMixture::checkPhaseFiles() const
+{
+    // Each phase fraction is dimensionless
+    for (const volScalarField& alpha : alphas_)
+    {
+        if (alpha.dimensions() != dimless)
+        {
+            FatalIOError
+            (
+                FUNCTION_NAME, __FILE__, __LINE__, alpha.objectPath()
+            )   << "Invalid value of keyword 'dimensions' in file "
+                << alpha.objectPath() << ": dimensions = "
+                << alpha.dimensions() << "; a phase fraction is"
+                << " dimensionless, " << dimless << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    // A fraction file that no phase reads: a misspelt or left-over phase
+    wordList names(alphas_.size());
+    forAll(alphas_, i)
+    {
+        names[i] = alphas_[i].name();
+    }
+    const fileName dir(mesh_.time().timePath());
+    for (const fileName& f : readDir(dir, fileName::FILE))
+    {
+        const word name(f.ext() == "gz" ? f.lessExt() : f);
+        if (name.starts_with("alpha.") && !names.found(name))
+        {
+            WarningInFunction
+                << dir/f << " is not read: it matches no phase of "
+                << this->objectPath() << " (the phases read: " << names
+                << ")" << endl;
+        }
+    }
+}
+
+
 void Foam::granularMixture::calcG()
 {
     surfaceScalarField geom(mesh_.magSf()*mesh_.deltaCoeffs());
@@ -752,6 +791,7 @@ Foam::granularMixture::granularMixture
             )
         );
     }
+    checkPhaseFiles();
     checkFractions();
 
     alphaPhis_.setSize(alphas_.size());
@@ -1296,7 +1336,27 @@ bool Foam::granularMixture::read()
 {
     if (regIOobject::read())
     {
+        // Everything again, with the checks of the start; the phases,
+        // whose fields are read at the start only, cannot change
+        const word airName(airName_);
         readAir();
+        if (airName_ != airName)
+        {
+            const dictionary& dict = subDict("air");
+            FatalIOErrorInFunction(dict)
+                << "Invalid value of keyword 'name' in dictionary "
+                << dict.name() << ": name = " << airName_ << " changed"
+                << " during the run (it was " << airName << "): the phase"
+                << " fields are read at the start only; stop the run and"
+                << " start it again" << nl
+                << exit(FatalIOError);
+        }
+        rheology_.read(*this);
+        segregation_.read(*this, "segregation", rheology_);
+        diffusion_.read(*this, "diffusion", rheology_);
+
+        Info<< "Re-read " << objectPath() << ": the air, the rheology,"
+            << " the segregation and the diffusion laws" << nl << endl;
         return true;
     }
     return false;
