@@ -39,7 +39,7 @@ pytestmark = pytest.mark.validation
 
 END_TIME = "10"            # the bulge has formed (figure 8: 5.2 s)
 FIGURE_TIME = END_TIME
-RUNS = {"coupled": (), "monodisperse": ("-monodisperse",)}
+RUNS = {"coupled": ("-serial",), "monodisperse": ("-serial", "-monodisperse")}
 
 
 @pytest.fixture(scope="module")
