@@ -108,21 +108,42 @@ def case_copy(tmp_path):
 STATUS = PROJECT / "validation" / "results" / "status.json"
 
 
+# The tolerance and the regression guard of every checked number, by label
+REFERENCE = PROJECT / "validation" / "reference.json"
+
+
+def reference(label):
+    """{"tolerance", "guard", "measured"} of a checked number, from
+    REFERENCE; a label missing from it is an assertion failure."""
+    entries = json.loads(REFERENCE.read_text())["checks"]
+    assert label in entries, (
+        f"no entry '{label}' in {REFERENCE}: give it the paper's tolerance "
+        "and a guard of about 3 x the measured value")
+    return entries[label]
+
+
 @pytest.fixture
 def check(request):
-    """check(label, measured, tolerance, paper=None, percent=False):
-    assert measured < tolerance (numbers, e.g. a relative L2 error) and
-    record the pair, with the paper's figure or equation, for the status
-    table (shown in % with percent)."""
-    def _check(label, measured, tolerance, paper=None, percent=False):
-        measured, tolerance = float(measured), float(tolerance)
+    """check(label, measured, paper=None, percent=False): assert measured
+    (a number, e.g. a relative L2 error) below its tolerance (the paper's)
+    and below its regression guard (about 3 x the measured value), both from
+    validation/reference.json, and record them, with the paper's figure or
+    equation, for the status table (shown in % with percent)."""
+    def _check(label, measured, paper=None, percent=False):
+        measured = float(measured)
+        ref = reference(label)
+        tolerance, guard = float(ref["tolerance"]), float(ref["guard"])
+        assert guard <= tolerance, (label, ref)
         request.node.user_properties.append(
             ("check", {"label": label, "measured": measured,
-                       "tolerance": tolerance, "paper": paper,
-                       "percent": percent,
-                       "passed": bool(measured < tolerance)}))
+                       "tolerance": tolerance, "guard": guard,
+                       "paper": paper, "percent": percent,
+                       "passed": bool(measured < guard)}))
         assert measured < tolerance, (
             f"{label}: measured {measured:.4g}, tolerance {tolerance:.4g}")
+        assert measured < guard, (
+            f"{label}: measured {measured:.4g}, above the regression guard "
+            f"{guard:.4g} (3 x the {ref['measured']:.4g} measured before)")
     return _check
 
 

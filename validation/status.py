@@ -33,7 +33,7 @@ def number(value, percent):
 
 def table(status):
     """Markdown: the tests by file (passed/failed/time), then every checked
-    number against its tolerance."""
+    number against its regression guard and its tolerance."""
     files = OrderedDict()
     for nodeid in sorted(status):
         files.setdefault(nodeid.split("::")[0], []).append(status[nodeid])
@@ -51,13 +51,14 @@ def table(status):
     passed = sum(e["outcome"] == "passed" for e in status.values())
     lines.append(f"| all | {passed} | {total - passed} | "
                  f"{sum(e['seconds'] for e in status.values()):.0f} |")
-    lines += ["", "| Check | Measured | Tolerance | Paper | |",
-              "|---|---|---|---|---|"]
+    lines += ["", "| Check | Measured | Guard | Tolerance | Paper | |",
+              "|---|---|---|---|---|---|"]
     for nodeid in sorted(status):
         for c in status[nodeid]["checks"]:
             lines.append(
                 f"| {cell(c['label'])} | "
                 f"{number(c['measured'], c['percent'])} | "
+                f"< {number(c['guard'], c['percent'])} | "
                 f"< {number(c['tolerance'], c['percent'])} | "
                 f"{cell(c['paper'] or '')} | "
                 f"{'pass' if c['passed'] else 'FAIL'} |")

@@ -29,8 +29,6 @@ H = 5e-3
 ZETA = math.radians(24.0)
 TABLE3 = grayChugunov.TABLE3
 MAX_DELTA_T = (3e-5, 3e-4, 1e-3)    # [s]; the viscous-CFL step is ~4e-6 s
-TOL_U = 0.01
-TOL_PHIS = 0.02
 MIN_RATIO = 10.0
 
 CFL_LINE = re.compile(r"^CFL \(4\.11\) max: .*viscous = (\S+)", re.M)
@@ -109,7 +107,6 @@ def test_layer_beyond_viscous_cfl(runs, check):
     plt.close(fig)
     write_results(RESULTS / "timestep", "timestep", {
         "case": "inclinedLayer, viscousStress implicit, nCorrectors 4",
-        "tolerance_l2_u": TOL_U, "tolerance_l2_phis": TOL_PHIS,
         "minimum_viscous_cfl_ratio": MIN_RATIO, "runs": table})
 
     for n in table:
@@ -118,9 +115,9 @@ def test_layer_beyond_viscous_cfl(runs, check):
         assert abs(n["depth_averaged_phis"] - 0.5) < 1e-9, where
         ratio = f"Δt {n['viscous_cfl_ratio_median']:.0f} × viscous CFL"
         check(f"implicit stress, layer at {ratio}: u vs Bagnold, L2",
-              n["l2_u_bagnold"], TOL_U, "(5.4)", percent=True)
+              n["l2_u_bagnold"], "(5.4)", percent=True)
         check(f"implicit stress, layer at {ratio}: φ^s vs (5.8), L2",
-              n["l2_phis_gray_chugunov"], TOL_PHIS, "(5.8)", percent=True)
+              n["l2_phis_gray_chugunov"], "(5.8)", percent=True)
     best = max(n["viscous_cfl_ratio_median"] for n in table)
     assert best >= MIN_RATIO, (
         f"largest step reached only {best:.1f} times the viscous-CFL step")
