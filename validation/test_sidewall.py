@@ -1,4 +1,4 @@
-"""Sidewall friction (issue 9): the fvOption granularSidewallFriction
+"""Sidewall friction: the fvOption granularSidewallFriction
 against the exact solution of a layer between two walls.
 
 The periodic layer of test_verification.py (table 1, zeta = 24 deg,

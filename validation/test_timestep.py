@@ -1,4 +1,4 @@
-"""A time step beyond the viscous CFL (issue 7): the periodic layer with
+"""A time step beyond the viscous CFL: the periodic layer with
 the viscous stress implicit (fvSolution PIMPLE viscousStress implicit).
 
 The layer of test_verification.py (table 1 rheology, table 3 segregation,

@@ -1,4 +1,4 @@
-"""Three grain sizes (issue 9): tutorials/tridisperseColumn at 30 cells
+"""Three grain sizes: tutorials/tridisperseColumn at 30 cells
 over h, run 30 s to its steady state, against the steady solution of
 (2.13) and (2.15) (validation/exact/tridisperse.py), for the tutorial's
 equal mix and an unequal one.

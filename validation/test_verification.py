@@ -1,4 +1,4 @@
-"""Verification of granularSegregationFoam on 1D columns (issue 3).
+"""Verification of granularSegregationFoam on 1D columns.
 
 1. Static column, constant f and D: phi^s against Gray & Chugunov (5.8)-(5.11)
    with Pe = f h / D, each phase's volume conserved to 1e-12.

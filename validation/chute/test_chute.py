@@ -149,7 +149,7 @@ def test_chute_steady_outflow(chute, check):
     check("chute outflow: u vs Bagnold, L2", l2_u, "(5.4), figure 4",
           percent=True)
     check("chute outflow: φ^s vs Gray & Chugunov, L2", l2_phis,
-          "(5.8), figure 4 (issue: 3 %)", percent=True)
+          "(5.8), figure 4 (3 %)", percent=True)
     assert abs(z_half - z_half_exact) < dz, (
         f"phi^s = 1/2 at z = {z_half:.5f}, (5.8): {z_half_exact:.5f}")
     check("chute outflow: depth-averaged φ^s vs (5.10), abs error",

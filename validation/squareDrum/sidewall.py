@@ -1,4 +1,4 @@
-"""Sidewall friction in the square drum (issue 9): the surface avalanche
+"""Sidewall friction in the square drum: the surface avalanche
 and the segregated core with and without the friction of the end walls
 (tutorials/squareDrum, ./Allrun -sidewall W MUW).
 
