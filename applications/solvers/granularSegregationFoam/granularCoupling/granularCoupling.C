@@ -6,6 +6,7 @@
 
 #include "granularCoupling.H"
 #include "fvMatrices.H"
+#include "extrapolatedCalculatedFvPatchFields.H"
 #include "granularInput.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
@@ -89,10 +90,22 @@ Foam::tmp<Foam::volScalarField> Foam::granularCoupling::followingH1
 {
     const fvMesh& mesh = rho.mesh();
 
-    // The field with the dimensions and patches of fvMatrix::H1
-    tmp<volScalarField> tH1(UEqn.H1());
+    // With the dimensions and patches of fvMatrix::H1
+    tmp<volScalarField> tH1
+    (
+        volScalarField::New
+        (
+            "H(1)",
+            mesh,
+            dimensionedScalar
+            (
+                UEqn.dimensions()/(dimVol*UEqn.psi().dimensions()),
+                Zero
+            ),
+            extrapolatedCalculatedFvPatchScalarField::typeName
+        )
+    );
     scalarField& H1 = tH1.ref().primitiveFieldRef();
-    H1 = Zero;
 
     const labelUList& own = mesh.owner();
     const labelUList& nei = mesh.neighbour();
