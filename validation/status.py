@@ -55,11 +55,12 @@ def table(status):
               "|---|---|---|---|---|---|"]
     for nodeid in sorted(status):
         for c in status[nodeid]["checks"]:
+            side = ">" if c.get("lower") else "<"
             lines.append(
                 f"| {cell(c['label'])} | "
                 f"{number(c['measured'], c['percent'])} | "
-                f"< {number(c['guard'], c['percent'])} | "
-                f"< {number(c['tolerance'], c['percent'])} | "
+                f"{side} {number(c['guard'], c['percent'])} | "
+                f"{side} {number(c['tolerance'], c['percent'])} | "
                 f"{cell(c['paper'] or '')} | "
                 f"{'pass' if c['passed'] else 'FAIL'} |")
     return "\n".join(lines) + "\n"

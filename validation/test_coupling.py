@@ -125,7 +125,8 @@ def test_figure7_layer(figure7_layer, check):
                        solver_u=(zg, u))
 
     assert (OUT / "figure7.png").stat().st_size > 10000
-    assert change_u < 1e-3, f"not steady: u changed by {change_u:.2e}"
+    check("stratified layer: u change over the last interval, of max",
+          change_u)
     check("stratified layer, 100 cells over h: φ^s vs (5.8), L2", l2_phi, "figure 7", percent=True)
     check("stratified layer: I vs (6.3) below 0.9 h, L2", l2_I_deep, "figure 7(a)", percent=True)
     check("stratified layer: u vs (6.5), L2", l2_u, "figure 7(b)",
@@ -222,10 +223,10 @@ def test_column(columns, phibar, C, check):
     }
     write_results(out_dir(), column_name(phibar, C), numbers)
 
-    assert abs(mean_phi - phibar) < 1e-6, f"phibar drifted: {mean_phi}"
-    assert change_phi < 5e-3, f"phi^s not steady: changed by {change_phi}"
-    assert change_u < 5e-3, f"u not steady: changed by {change_u}"
     where = f"column φ̄^s = {phibar}, C = {C}"
+    check(f"{where}: depth-averaged φ^s vs φ̄^s, abs", abs(mean_phi - phibar))
+    check(f"{where}: φ^s change over the last interval, max abs", change_phi)
+    check(f"{where}: u change over the last interval, of max", change_u)
     exact = "(6.10)" if C == 0 else "steady ODE with C"
     if 0.0 < phibar < 1.0:
         check(f"{where}: φ^s vs {exact}, L2", err_phi,

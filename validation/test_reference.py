@@ -19,16 +19,32 @@ def test_guard_rule():
     assert reference.guard(0.0, 0.01) == 1e-12
 
 
+def test_lower_guard_rule():
+    """A lower bound: about a third of the measured value, rounded down to
+    two digits, at least the tolerance."""
+    assert reference.guard(0.30, 0.05, lower=True) == pytest.approx(0.1)
+    assert reference.guard(0.317, 0.05, lower=True) == pytest.approx(0.1)
+    assert reference.guard(0.35, 0.05, lower=True) == pytest.approx(0.11)
+    assert reference.guard(0.1, 0.05, lower=True) == 0.05
+    assert reference.guard(0.0, 0.05, lower=True) == 0.05
+
+
 def test_every_entry_guards_below_its_tolerance():
     """Each entry: 0 < guard <= tolerance, the measured value below the
-    guard, and the guard of the rule."""
+    guard (for a lower bound: tolerance <= guard < measured), and the guard
+    of the rule."""
     entries = json.loads(reference.REFERENCE.read_text())["checks"]
     assert len(entries) >= 25, len(entries)
     for label, ref in entries.items():
-        assert 0 < ref["guard"] <= ref["tolerance"], (label, ref)
-        assert ref["measured"] < ref["guard"], (label, ref)
-        assert ref["guard"] == reference.guard(ref["measured"],
-                                               ref["tolerance"]), (label, ref)
+        lower = reference.is_lower(ref)
+        if lower:
+            assert ref["guard"] >= ref["tolerance"], (label, ref)
+            assert ref["measured"] > ref["guard"], (label, ref)
+        else:
+            assert 0 < ref["guard"] <= ref["tolerance"], (label, ref)
+            assert ref["measured"] < ref["guard"], (label, ref)
+        assert ref["guard"] == reference.guard(
+            ref["measured"], ref["tolerance"], lower), (label, ref)
 
 
 def test_update_sets_measured_and_guard():
