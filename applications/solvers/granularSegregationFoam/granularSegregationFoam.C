@@ -38,6 +38,7 @@ Description
 #include "dynamicFvMesh.H"
 #include "granularMixture.H"
 #include "granularCoupling.H"
+#include "faceReconstruction.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
 #include "fvOptions.H"
@@ -73,6 +74,9 @@ int main(int argc, char *argv[])
     #include "createUfIfPresent.H"
 
     granularCoupling coupling(pimple);
+
+    // fvc::reconstruct with the geometry cached (the correctors call it)
+    faceReconstruction reconstruct(mesh);
 
     // fvSolution PIMPLE { viscousStress explicit | implicit; }: does the
     // viscous part of (4.11) limit the time step?
@@ -154,6 +158,8 @@ int main(int argc, char *argv[])
             // Picard: rheology of the previous iterate (at the first
             // iteration of a fixed mesh, the one computed before the time
             // step from the same fields), then the phases
+            reconstruct.update();
+
             if (!pimple.firstIter() || mesh.changing())
             {
                 mixture.correctRheology(p, p_rgh.needReference());
