@@ -108,8 +108,10 @@ int main(int argc, char *argv[])
         // The time step is set from the state at the start of the step:
         // its rheology and segregation rate, as a restart from the state
         // written here sees them (createFields.H)
+        addProfiling(preCFL, "granular::rheologyBeforeCFL");
         mixture.correctRheology(p, p_rgh.needReference());
         mixture.updateSegregationRate();
+        endProfiling(preCFL);
 
         #include "granularCourantNo.H"
         #include "alphaCourantNo.H"
@@ -164,10 +166,14 @@ int main(int argc, char *argv[])
             {
                 mixture.correctRheology(p, p_rgh.needReference());
             }
+            addProfiling(transport, "granular::phases");
             mixture.solve();
             rho = mixture.rho();
+            endProfiling(transport);
 
+            addProfiling(momentum, "granular::UEqn");
             #include "UEqn.H"
+            endProfiling(momentum);
 
             {
                 #include "pCoefficients.H"
@@ -175,6 +181,7 @@ int main(int argc, char *argv[])
                 // --- Pressure corrector loop
                 while (coupling.correct())
                 {
+                    addProfiling(corrector, "granular::pEqn");
                     #include "pEqn.H"
                 }
             }
