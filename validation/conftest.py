@@ -107,11 +107,11 @@ def case_copy(tmp_path):
 # a partial run updates only its own tests), from which validation/status.py
 # writes the README's status table.
 
-STATUS = PROJECT / "validation" / "results" / "status.json"
+STATUS = reference_rule.STATUS
 
 
 # The tolerance and the regression guard of every checked number, by label
-REFERENCE = PROJECT / "validation" / "reference.json"
+REFERENCE = reference_rule.REFERENCE
 
 
 def reference(label):

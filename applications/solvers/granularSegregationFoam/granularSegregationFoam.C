@@ -157,11 +157,12 @@ int main(int argc, char *argv[])
                 }
             }
 
+            // The reconstruction's geometry of the mesh as it now is
+            reconstruct.update();
+
             // Picard: rheology of the previous iterate (at the first
             // iteration of a fixed mesh, the one computed before the time
             // step from the same fields), then the phases
-            reconstruct.update();
-
             if (!pimple.firstIter() || mesh.changing())
             {
                 mixture.correctRheology(p, p_rgh.needReference());
