@@ -183,9 +183,7 @@ int main(int argc, char *argv[])
                 while (coupling.correct())
                 {
                     addProfiling(corrector, "granular::pEqn");
-                    coupling.startCorrector(U);
                     #include "pEqn.H"
-                    coupling.endCorrector(U, rho);
                 }
             }
 

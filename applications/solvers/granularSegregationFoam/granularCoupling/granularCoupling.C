@@ -30,8 +30,7 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     final_(false),
     nextFinal_(false),
     nSolutions_(0),
-    residual_(0),
-    acceleration_()
+    residual_(0)
 {
     read();
     Info<< "Pressure coupling: " << pressureCouplingNames[coupling_]
@@ -40,11 +39,6 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     {
         Info<< ", ended once the initial residual of p_rgh is below "
             << tolerance_;
-    }
-    if (acceleration_.depth())
-    {
-        Info<< ", Anderson acceleration over the last "
-            << acceleration_.depth() << " correctors";
     }
     Info<< nl << endl;
 
@@ -85,7 +79,6 @@ void Foam::granularCoupling::read()
             "0 <= pRghTolerance < 1; 0: run every corrector"
         );
     }
-    acceleration_.read(dict);
 }
 
 
@@ -187,30 +180,7 @@ bool Foam::granularCoupling::correct()
 
     ++corr_;
     final_ = nextFinal_ || corr_ >= pimple_.nCorrPISO();
-    if (corr_ == 1)
-    {
-        acceleration_.reset();
-    }
     return true;
-}
-
-
-void Foam::granularCoupling::startCorrector(const volVectorField& U)
-{
-    acceleration_.start(U);
-}
-
-
-void Foam::granularCoupling::endCorrector
-(
-    volVectorField& U,
-    const volScalarField& rho
-)
-{
-    if (!final_)
-    {
-        acceleration_.accelerate(U, rho);
-    }
 }
 
 
