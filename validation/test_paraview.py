@@ -48,6 +48,7 @@ RUNS = {
     "bulbousHead": ("0.1", 7, (1, 7)),
     "segregationColumn": ("0.2", 7, (7, 1)),
     "tridisperseColumn": ("0.2", 8, (8, 1)),
+    "columnCollapse": ("0.05", 6, (3, 2)),
 }
 THIN = {"chute": 10.0, "bulbousHead": 8.0}    # their states' exaggerations
 SUMMARY = re.compile(

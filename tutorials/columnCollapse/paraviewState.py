@@ -1,0 +1,11 @@
+"""ParaView state of the granular column collapse: the fields at the last
+written time.  Usage: *ParaView* in the project's README
+(paraview --state=paraviewState.py)."""
+import os
+import sys
+
+sys.path.insert(0, os.environ.get("FOAM_USER_APPBIN", ""))  # openfoam.env
+import granularParaView  # noqa: E402 (source etc/openfoam.env if missing)
+
+granularParaView.main(["alpha.grains", "alpha.air", "U", "p", "I",
+                       "illPosed"])
