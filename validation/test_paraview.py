@@ -209,6 +209,17 @@ def test_state_renders_the_case(display, runs, name):
         assert rows.mean() < grains.mean() - 20, (rows.mean(), grains.mean())
         return
 
+    if name == "columnCollapse":
+        # phi^a (viridis): the column's purple grains against the left wall,
+        # left of and below the yellow air
+        view = views["alpha.air"]
+        ya, xa = np.nonzero(near(view, np.array([253, 231, 37])))
+        yg, xg = np.nonzero(near(view, np.array([68, 1, 84])))
+        assert xa.size > 100 and xg.size > 100
+        assert xg.mean() < xa.mean() - 20, (xg.mean(), xa.mean())
+        assert yg.mean() > ya.mean(), (yg.mean(), ya.mean())
+        return
+
     # a thin layer: the mesh box, the inflow's grains on the left, the base
     # at the bottom, the exaggeration
     par = parameters(case)
