@@ -6,12 +6,18 @@ sampled floor row and wall column (system/controlDict, function
   with phi^g > 1/2 contiguous from the left wall [m];
 - wall height: the grain depth of the wall's column, sum of phi^g dz [m];
 - fastest grains: the largest |U| over the cells with phi^g > 1/2 [m/s];
-- volume change: the largest |V^g(t) - V^g(0)| / V^g(0) over the run.
+- volume change: the largest |V^g(t) - V^g(0)| / V^g(0) over the run;
+- deposit: the grain depth of every column of cells at the end [m].
 
-    /usr/bin/python3 validation/columnCollapse/post.py <case>
+    /usr/bin/python3 validation/columnCollapse/post.py <case>... [--out DIR]
 
-prints them as JSON, each time series by sampled time.
+prints them as JSON, each time series by sampled time; with --out, draws
+the front x_f(t), the height at the wall and the deposits of the cases
+into DIR/columnCollapse.png.  Cell centres come from `postProcess -func
+writeCellCentres` (chute/post.py), so the OpenFOAM environment must be
+sourced.
 """
+import argparse
 import json
 import re
 import sys
@@ -21,6 +27,10 @@ if __name__ == "__main__" and __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import numpy as np  # noqa: E402
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
 
 from cases import profiles, times, volumes  # noqa: E402
 from chute import post as fields  # noqa: E402
@@ -71,12 +81,21 @@ def volume_change(case):
     return float(np.max(np.abs(vg - vg[0])) / vg[0])
 
 
+def deposit(case, time_name):
+    """Cell-centre x [m] and the grain depth of every column of cells [m]."""
+    x, z, f = fields.grid(case, time_name, "alpha.grains")
+    return x, f["alpha.grains"].sum(axis=0) * (z[1] - z[0])
+
+
 def measure(case):
     """Every number above: time series by sampled time, and the end's."""
     names = times(case, "profiles")
     assert len(names) >= 2, f"{case}: fewer than two sampled times"
     end = names[-1]
+    x, h = deposit(case, end)
     return {
+        "deposit_x": x.tolist(),
+        "deposit_h": h.tolist(),
         "times": [float(t) for t in names],
         "front": [front(case, t) for t in names],
         "wall_height": [wall_height(case, t) for t in names],
@@ -86,5 +105,41 @@ def measure(case):
     }
 
 
+def figure(numbers, out):
+    """The front x_f(t), the height at the wall h_w(t) and the deposits of
+    the runs in numbers ({label: measure(case)}): out/columnCollapse.png."""
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(13, 3.8))
+    for label, n in numbers.items():
+        ax1.plot(n["times"], n["front"], ".-", label=label)
+        ax2.plot(n["times"], n["wall_height"], ".-", label=label)
+        ax3.step(n["deposit_x"], n["deposit_h"], where="mid", label=label)
+    ax1.set(xlabel="t [s]", ylabel="front on the floor $x_f$ [m]")
+    ax2.set(xlabel="t [s]", ylabel="height at the wall [m]")
+    ax3.set(xlabel="x [m]", ylabel="deposit: grain depth [m]")
+    for ax in (ax1, ax2, ax3):
+        ax.grid(alpha=0.3)
+    ax3.legend(fontsize=8)
+    fig.tight_layout()
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "columnCollapse.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("cases", nargs="+", type=Path)
+    parser.add_argument("--out", type=Path)
+    args = parser.parse_args()
+    numbers = {str(c): measure(c) for c in args.cases}
+    print(json.dumps({c: {k: v for k, v in n.items()
+                          if not k.startswith("deposit")}
+                      for c, n in numbers.items()}, indent=2))
+    if args.out:
+        print(figure(numbers, args.out))
+
+
 if __name__ == "__main__":
-    print(json.dumps(measure(Path(sys.argv[1])), indent=2))
+    main()
