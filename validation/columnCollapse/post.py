@@ -2,8 +2,8 @@
 sampled floor row and wall column (system/controlDict, function
 `profiles`), its grain volume (function `volumes`) and its written fields:
 
-- front: the right edge of the last floor cell of the deposit, the cells
-  with phi^g > 1/2 contiguous from the left wall [m];
+- front: where phi^g falls through 1/2 along the floor's row of cells,
+  from the left wall [m];
 - wall height: the grain depth of the wall's column, sum of phi^g dz [m];
 - fastest grains: the largest |U| over the cells with phi^g > 1/2 [m/s];
 - volume change: the largest |V^g(t) - V^g(0)| / V^g(0) over the run;
@@ -47,14 +47,20 @@ def parameters(case):
 
 
 def front(case, time_name):
-    """Right edge of the deposit on the floor: the last of the cells with
-    phi^g > 1/2 contiguous from the left wall [m] (0: none)."""
+    """The front of the deposit on the floor [m]: where phi^g falls through
+    1/2 along the floor's row of cells, from the left wall, linear between
+    cell centres (the right wall when it does not; 0 when the first cell
+    holds no grains)."""
     prof = profiles(case, time_name, function="profiles", set_name="floor")
     x, g = prof["z"], prof["alpha.grains"]
-    dx = x[1] - x[0]
-    outside = np.nonzero(g <= GRAINS)[0]
-    n = outside[0] if outside.size else g.size
-    return float(x[n - 1] + 0.5 * dx) if n else 0.0
+    below = np.nonzero(g <= GRAINS)[0]
+    if not below.size:
+        return float(x[-1] + 0.5 * (x[-1] - x[-2]))
+    k = below[0]
+    if k == 0:
+        return 0.0
+    s = (g[k - 1] - GRAINS) / (g[k - 1] - g[k])
+    return float(x[k - 1] + s * (x[k] - x[k - 1]))
 
 
 def wall_height(case, time_name):
