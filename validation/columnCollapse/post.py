@@ -5,7 +5,10 @@ sampled floor row and wall column (system/controlDict, function
 - front: where phi^g falls through 1/2 along the floor's row of cells,
   from the left wall [m];
 - wall height: the grain depth of the wall's column, sum of phi^g dz [m];
-- fastest grains: the largest |U| over the cells with phi^g > 1/2 [m/s];
+- fastest grains: the largest |U| over the cells with phi^g > 1/2 [m/s],
+  at the end and at every written time;
+- stop: the first sampled time from which the front moves by less than
+  STOP over the rest of the run [s];
 - volume change: the largest |V^g(t) - V^g(0)| / V^g(0) over the run;
 - deposit: the grain depth of every column of cells at the end [m].
 
@@ -36,6 +39,7 @@ from cases import profiles, times, volumes  # noqa: E402
 from chute import post as fields  # noqa: E402
 
 GRAINS = 0.5                # phi^g above this is "grains"
+STOP = 1e-3                 # [m] a front that moves less has stopped
 
 
 def parameters(case):
@@ -93,17 +97,29 @@ def deposit(case, time_name):
     return x, f["alpha.grains"].sum(axis=0) * (z[1] - z[0])
 
 
+def stop_time(times_, fronts):
+    """The first of times_ from which the front stays within STOP of its
+    final position."""
+    fronts = np.asarray(fronts)
+    moving = np.nonzero(np.abs(fronts - fronts[-1]) >= STOP)[0]
+    k = moving[-1] + 1 if moving.size else 0
+    return float(times_[min(k, len(times_) - 1)])
+
+
 def measure(case):
     """Every number above: time series by sampled time, and the end's."""
     names = times(case, "profiles")
     assert len(names) >= 2, f"{case}: fewer than two sampled times"
     end = names[-1]
     x, h = deposit(case, end)
+    fronts = [front(case, t) for t in names]
     return {
+        "front_stop_time": stop_time([float(t) for t in names], fronts),
+        "fastest_grains": [fastest_grains(case, t) for t in names],
         "deposit_x": x.tolist(),
         "deposit_h": h.tolist(),
         "times": [float(t) for t in names],
-        "front": [front(case, t) for t in names],
+        "front": fronts,
         "wall_height": [wall_height(case, t) for t in names],
         "fastest_grains_end": fastest_grains(case, end),
         "volume_change": volume_change(case),

@@ -9,7 +9,8 @@ Checked:
 
 1. the grain volume is conserved (every run);
 2. the deposit is at rest: its height at the wall no longer changes over
-   the last half second, and its fastest grains move at the creep speed of
+   the last half second, and from half a second after its front has
+   stopped on, its fastest grains move at the creep speed of
    the viscosity cap (about tau h / eta_max: 3.5e-5 m/s for 70 Pa under
    5 cm at eta_max = 1e5 Pa s), far below the collapse's 1 m/s;
 3. the deposit's height at the wall is the same on 1 cm and 5 mm cells,
@@ -122,6 +123,13 @@ def test_column_collapse_at_rest(runs, check):
           (h.max() - h.min()) / _dz(cases["1cm"]))
     check("column collapse: fastest grains at the end, m/s",
           n["fastest_grains_end"])
+    # 0.5 s after the front has stopped
+    later = t >= n["front_stop_time"] + REST - 1e-9
+    assert later.any(), (
+        f"the front stops at {n['front_stop_time']} s, the run ends at "
+        f"{t[-1]} s")
+    check("column collapse: fastest grains 0.5 s after the front stopped, m/s",
+          max(np.array(n["fastest_grains"])[later]))
     # The collapse itself: the grains left the wall
     assert n["wall_height"][-1] < 0.5 * post.parameters(cases["1cm"])["H0"]
 
