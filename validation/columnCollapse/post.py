@@ -113,15 +113,16 @@ def measure(case):
     end = names[-1]
     x, h = deposit(case, end)
     fronts = [front(case, t) for t in names]
+    speeds = [fastest_grains(case, t) for t in names]
     return {
         "front_stop_time": stop_time([float(t) for t in names], fronts),
-        "fastest_grains": [fastest_grains(case, t) for t in names],
+        "fastest_grains": speeds,
         "deposit_x": x.tolist(),
         "deposit_h": h.tolist(),
         "times": [float(t) for t in names],
         "front": fronts,
         "wall_height": [wall_height(case, t) for t in names],
-        "fastest_grains_end": fastest_grains(case, end),
+        "fastest_grains_end": speeds[-1],
         "volume_change": volume_change(case),
         "end_time": float(end),
     }
