@@ -175,9 +175,10 @@ def time_names(case):
     return sorted(out, key=float)
 
 
-def parameters(case):
-    """Numeric entries of case/system/chuteParameters (Lx, Lz, h, nx, ...)."""
-    text = _read_text(Path(case) / "system" / "chuteParameters")
+def parameters(case, dictionary="chuteParameters"):
+    """Numeric entries of case/system/<dictionary> (the chute's: Lx, Lz, h,
+    nx, ...)."""
+    text = _read_text(Path(case) / "system" / dictionary)
     text = re.sub(r"//.*", "", text)
     return {k: float(v) for k, v in re.findall(
         r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}

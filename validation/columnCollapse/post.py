@@ -22,7 +22,6 @@ sourced.
 """
 import argparse
 import json
-import re
 import sys
 from pathlib import Path
 
@@ -44,10 +43,7 @@ STOP = 1e-3                 # [m] a front that moves less has stopped
 
 def parameters(case):
     """Numeric entries of case/system/columnParameters."""
-    text = (Path(case) / "system" / "columnParameters").read_text()
-    text = re.sub(r"//.*", "", text)
-    return {k: float(v) for k, v in re.findall(
-        r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+    return fields.parameters(case, "columnParameters")
 
 
 def front(case, time_name):

@@ -79,16 +79,15 @@ def runs(foam_env):
         log = (cases[name] / "log.granularSegregationFoam").read_text()
         assert log.rstrip().endswith("End"), f"{name}: solver did not finish"
     numbers = {name: post.measure(case) for name, case in cases.items()}
-    a = np.array([h0 / L0 for h0 in ASPECT.values()])
-    h_inf = np.array([numbers[n]["wall_height"][-1] for n in ASPECT])
+    h0 = np.array(list(ASPECT.values()))
+    a = h0 / L0
+    height = h0 / np.array([numbers[n]["wall_height"][-1] for n in ASPECT])
     runout = np.array([(numbers[n]["front"][-1] - L0) / L0 for n in ASPECT])
     fits = {
         "aspect_ratio": a.tolist(),
-        "H0_over_h_inf": (np.array(list(ASPECT.values())) / h_inf).tolist(),
+        "H0_over_h_inf": height.tolist(),
         "runout_over_L0": runout.tolist(),
-        "height_exponent": float(np.polyfit(
-            np.log(a), np.log(np.array(list(ASPECT.values())) / h_inf),
-            1)[0]),
+        "height_exponent": float(np.polyfit(np.log(a), np.log(height), 1)[0]),
         "runout_exponent": float(np.polyfit(np.log(a), np.log(runout),
                                             1)[0]),
     }
