@@ -1,0 +1,409 @@
+"""One-step convergence harness of the pressure-velocity-stress coupling.
+
+From a written state of a case it runs a few time steps at a fixed step
+with a coupling setting, and compares the fields reached with those of a
+reference coupling (200 PISO correctors, p_rgh solved to 1e-13 every
+time) run from the same state over the same steps:
+
+- the relative L2 error of U over the grains (alpha.air < 1/2 in the
+  reference) and over the air, separately;
+- the largest |w| (the velocity normal to the base) in the air, against
+  the reference's;
+- the relative L2 error of p in the row of cells along the base;
+- the relative L2 error of U over the grains of the last ten columns
+  (the chute's outlet);
+- the pressure solutions per step and the CPU milliseconds per step.
+
+    bench/harness states [--states chute1 layer2d ...]
+    bench/harness run [--states ...] [--dt 1e-3 4e-3] [--steps 1 10]
+                      [--couplings PISO-4 PISO-10 SIMPLEC-1 ...]
+                      [--edit DICT:ENTRY=VALUE ...] [--label NAME]
+
+`states` writes the states into bench/work/harness/states (git-ignored);
+`run` appends its measurements to bench/coupling.json under "harness"
+(an entry with the same state, step, steps, coupling and edits is
+replaced).  --edit changes a dictionary of the case (for example
+constant/granularProperties:air.nu=1e-3) in the candidate and in its
+reference alike, so that a change of the model is judged against its own
+converged step; its errors against the unedited reference are written
+beside them.  See bench/README.md.
+"""
+import argparse
+import datetime
+import json
+import math
+import platform
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "validation"))
+
+import numpy as np  # noqa: E402
+
+from cases import foam, foam_output, set_entry  # noqa: E402
+from chute.post import cell_centres, read_field  # noqa: E402
+
+WORK = ROOT / "bench" / "work" / "harness"
+RESULTS = ROOT / "bench" / "coupling.json"
+SOLVER = "granularSegregationFoam"
+GRAINS = 0.5                    # alpha.air below this is grains
+OUTLET_COLUMNS = 10
+
+# The reference: PISO with 200 correctors, every p_rgh solution to 1e-13
+REFERENCE = {
+    "PIMPLE.pressureCoupling": "PISO",
+    "PIMPLE.nCorrectors": 200,
+    "PIMPLE.pRghTolerance": 0,
+    "solvers.p_rgh.tolerance": 1e-13,
+    "solvers.p_rgh.relTol": 0,
+    "solvers.p_rghFinal.tolerance": 1e-13,
+    "solvers.p_rghFinal.relTol": 0,
+}
+
+
+# --------------------------------------------------------------------------
+# States
+# --------------------------------------------------------------------------
+
+def _outputs(directory, names):
+    """What a case wrote (time directories, logs, decompositions, figures):
+    left out of copies of the case."""
+    return [n for n in names if re.fullmatch(r"[0-9.eE+-]+", n)
+            or n.startswith(("log.", "processor")) or n in
+            ("figures", "postProcessing", "movingFrame", "VTK")]
+
+
+def _chute(end_time):
+    """The chute tutorial (155 x 40) from rest to end_time, serial."""
+    def make(case):
+        shutil.copytree(ROOT / "tutorials" / "chute", case,
+                        ignore=_outputs)
+        set_entry(case, "system/chuteParameters", "endTime", end_time)
+        set_entry(case, "system/chuteParameters", "writeInterval", end_time)
+        shutil.copytree(case / "0.orig", case / "0")
+        foam(case, "blockMesh")
+        return end_time
+    return make
+
+
+def _layer2d(case, end_time=0.2, columns=10, length=0.04, h=5e-3,
+             amplitude=0.1):
+    """The periodic inclined layer on `columns` columns of 4 mm x 0.1 mm
+    cells (the chute's aspect ratio is 26, this 40), its surface a sine of
+    +-amplitude*h over the length; run from rest to end_time."""
+    shutil.copytree(ROOT / "validation" / "cases" / "inclinedLayer", case,
+                    ignore=_outputs)
+    mm = 1e3 * length
+    block = case / "system" / "blockMeshDict"
+    text = block.read_text()
+    text = text.replace("(0.1 0 0) (0.1 0.1 0)", f"({mm:g} 0 0) ({mm:g} 0.1 0)")
+    text = text.replace("(0.1 0 6) (0.1 0.1 6)", f"({mm:g} 0 6) ({mm:g} 0.1 6)")
+    text = text.replace("(1 1 $nz)", f"({columns} 1 $nz)")
+    assert text.count(f"({mm:g} ") == 4 and f"({columns} 1 $nz)" in text, (
+        "the inclined layer's blockMeshDict is not the expected one")
+    block.write_text(text)
+    boxes = []
+    for i in range(columns):
+        x0, x1 = i * length / columns, (i + 1) * length / columns
+        top = h * (1 + amplitude * math.sin(2 * math.pi * 0.5 * (x0 + x1)
+                                            / length))
+        boxes.append(
+            f"boxToCell {{ box ({x0!r} -1 -1) ({x1!r} 1 {top!r}); "
+            "fieldValues ( volScalarFieldValue alpha.air 0 "
+            "volScalarFieldValue alpha.small 0.5 "
+            "volScalarFieldValue alpha.large 0.5 ); }")
+    sfd = case / "system" / "setFieldsDict"
+    text = sfd.read_text()
+    start = text.index("regions")
+    sfd.write_text(text[:start] + "regions\n(\n    "
+                   + "\n    ".join(boxes) + "\n);\n")
+    for entry, value in (("PIMPLE.momentumPredictor", "yes"),
+                         ("PIMPLE.viscousStress", "implicit"),
+                         ("PIMPLE.nCorrectors", 20)):
+        set_entry(case, "system/fvSolution", entry, value)
+    for entry, value in (("endTime", end_time), ("writeInterval", end_time),
+                         ("functions", "{}")):
+        set_entry(case, "system/controlDict", entry, value)
+    shutil.copytree(case / "0.orig", case / "0")
+    foam(case, "blockMesh")
+    foam(case, "setFields")
+    return end_time
+
+
+STATES = {
+    "chute1": _chute(1),
+    "chute20": _chute(20),
+    "layer2d": _layer2d,
+}
+
+
+def state_dir(name):
+    return WORK / "states" / name
+
+
+def make_state(name):
+    """Run the case of state `name` to its time; write its cell centres."""
+    case = state_dir(name)
+    if case.exists():
+        shutil.rmtree(case)
+    case.parent.mkdir(parents=True, exist_ok=True)
+    end_time = STATES[name](case)
+    set_entry(case, "system/controlDict", "writePrecision", 17)
+    print(f"harness: state {name}: running to t = {end_time} s", flush=True)
+    log, seconds = foam_output(case, SOLVER, timeout=6 * 3600)
+    (case / f"log.{SOLVER}").write_text(log)
+    time_name = latest_time(case)
+    cell_centres(case, time_name)
+    print(f"harness: state {name}: t = {time_name} in {seconds:.0f} s",
+          flush=True)
+
+
+def latest_time(case):
+    """Name of the latest time directory of case (not 0)."""
+    names = [p.name for p in Path(case).iterdir() if p.is_dir()
+             and re.fullmatch(r"[0-9.eE+-]+", p.name)]
+    assert names, f"no time directory in {case}"
+    return max(names, key=float)
+
+
+# --------------------------------------------------------------------------
+# Runs
+# --------------------------------------------------------------------------
+
+def coupling_settings(name):
+    """fvSolution entries of a coupling named like PISO-10 or SIMPLEC-1."""
+    if name == "reference":
+        return dict(REFERENCE)
+    m = re.fullmatch(r"(PISO|SIMPLEC)-(\d+)", name)
+    if not m or int(m.group(2)) < 1:
+        raise ValueError(f"coupling '{name}' is not PISO-N or SIMPLEC-N "
+                         "(N >= 1) or reference")
+    return {"PIMPLE.pressureCoupling": m.group(1),
+            "PIMPLE.nCorrectors": int(m.group(2))}
+
+
+def parse_edit(text):
+    m = re.fullmatch(r"([\w./]+):([\w.()|\"*-]+)=(.+)", text)
+    if not m:
+        raise ValueError(f"edit '{text}' is not DICT:ENTRY=VALUE")
+    return m.group(1), m.group(2), m.group(3)
+
+
+def run_name(state, dt, steps, coupling, edits):
+    tag = "-".join(re.sub(r"[^\w.]+", "_", e) for e in edits)
+    return f"{state}_dt{dt:g}_n{steps}_{coupling}" + (f"_{tag}" if tag
+                                                        else "")
+
+
+def run_steps(state, dt, steps, coupling, edits):
+    """Run `steps` steps of dt from the state with the coupling and edits;
+    return (case, status, pressure solutions per step, CPU ms per step)."""
+    source = state_dir(state)
+    t0 = latest_time(source)
+    case = WORK / "runs" / run_name(state, dt, steps, coupling, edits)
+    if case.exists():
+        shutil.rmtree(case)
+    case.mkdir(parents=True)
+    for part in ("constant", "system", t0):
+        shutil.copytree(source / part, case / part)
+    end = float(t0) + steps * dt
+    for entry, value in (("startFrom", "latestTime"),
+                         ("adjustTimeStep", "no"), ("deltaT", repr(dt)),
+                         ("endTime", repr(end)),
+                         ("writeControl", "timeStep"),
+                         ("writeInterval", steps), ("writePrecision", 17),
+                         ("timePrecision", 10), ("functions", "{}")):
+        set_entry(case, "system/controlDict", entry, value)
+    for entry, value in coupling_settings(coupling).items():
+        set_entry(case, "system/fvSolution", entry, value)
+    for dictionary, entry, value in map(parse_edit, edits):
+        set_entry(case, dictionary, entry, value)
+    log = case / f"log.{SOLVER}"
+    with open(log, "w") as out:
+        res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,
+                             stderr=subprocess.STDOUT, timeout=3600)
+    text = log.read_text()
+    solutions = [int(n) for n in
+                 re.findall(r"Pressure coupling: (\d+) pressure solutions",
+                            text)]
+    cpu = [float(s) for s in re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s",
+                                        text, re.M)]
+    if res.returncode != 0 or len(solutions) != steps:
+        tail = [ln for ln in text.strip().splitlines() if ln.strip()][-3:]
+        return case, (f"failed (exit {res.returncode}) after "
+                      f"{len(solutions)} of {steps} steps: "
+                      + " / ".join(tail)[-300:]), None, None
+    ms = (1e3 * (cpu[-1] - cpu[0]) / (steps - 1)) if steps > 1 else None
+    return case, "ok", sum(solutions) / steps, ms
+
+
+def _rel(a, b):
+    """Relative L2 norm of a - b against b (NaN if b is zero)."""
+    norm = float(np.sqrt(np.sum(np.square(b))))
+    err = float(np.sqrt(np.sum(np.square(a - b))))
+    return err / norm if norm > 0 else (0.0 if err == 0 else math.nan)
+
+
+def compare(case, ref, state):
+    """Errors of the fields of case against ref (both at their last time)."""
+    source = state_dir(state)
+    C = read_field(source, latest_time(source), "C")
+    t, tr = latest_time(case), latest_time(ref)
+    assert math.isclose(float(t), float(tr), rel_tol=1e-9), (
+        f"{case} ended at {t}, its reference at {tr}")
+    U, Ur = read_field(case, t, "U"), read_field(ref, tr, "U")
+    p, pr = read_field(case, t, "p"), read_field(ref, tr, "p")
+    grains = read_field(ref, tr, "alpha.air") < GRAINS
+    air = ~grains
+    z = C[:, 2]
+    base = z < z.min() + 0.5 * np.min(np.diff(np.unique(np.round(z, 12))))
+    xs = np.unique(np.round(C[:, 0], 12))
+    outlet = grains & (C[:, 0] >= xs[max(0, len(xs) - OUTLET_COLUMNS)]
+                       - 1e-12)
+    finite = bool(np.all(np.isfinite(U)) and np.all(np.isfinite(p)))
+    return {
+        "finite": finite,
+        "l2_u_grains": _rel(U[grains], Ur[grains]),
+        "l2_u_air": _rel(U[air], Ur[air]),
+        "max_w_air": float(np.max(np.abs(U[air, 2]))) if air.any() else 0.0,
+        "max_w_air_reference": (float(np.max(np.abs(Ur[air, 2])))
+                                if air.any() else 0.0),
+        "l2_p_base": _rel(p[base], pr[base]),
+        "l2_u_last_columns": (_rel(U[outlet], Ur[outlet])
+                              if len(xs) > OUTLET_COLUMNS and outlet.any()
+                              else None),
+    }
+
+
+def _rounded(d):
+    return {k: (float(f"{v:.3g}") if isinstance(v, float)
+                and math.isfinite(v) else v) for k, v in d.items()}
+
+
+def reference(state, dt, steps, edits, references):
+    """(case, pressure solutions per step, CPU ms per step) of the
+    reference from the state with the edits, run once and cached."""
+    key = (state, dt, steps, tuple(edits))
+    if key not in references:
+        case, status, sol, ms = run_steps(state, dt, steps, "reference",
+                                          edits)
+        assert status == "ok", f"the reference failed: {status}"
+        references[key] = (case, sol, ms)
+    return references[key]
+
+
+def measure(state, dt, steps, coupling, edits, references):
+    """One candidate against its reference."""
+    ref, ref_sol, ref_ms = reference(state, dt, steps, edits, references)
+    entry = {"state": state, "time": float(latest_time(state_dir(state))),
+             "dt": dt, "steps": steps, "coupling": coupling,
+             "edits": list(edits)}
+    if coupling == "reference":
+        entry.update(status="ok", pressure_solutions_per_step=ref_sol,
+                     cpu_ms_per_step=ref_ms)
+        return _rounded(entry)
+    case, status, sol, ms = run_steps(state, dt, steps, coupling, edits)
+    entry.update(status=status, pressure_solutions_per_step=sol,
+                 cpu_ms_per_step=ms, reference_cpu_ms_per_step=ref_ms)
+    if status == "ok":
+        entry.update(compare(case, ref, state))
+        if edits:
+            plain = reference(state, dt, steps, [], references)[0]
+            entry["against_unedited_reference"] = _rounded(
+                compare(case, plain, state))
+    return _rounded(entry)
+
+
+def machine():
+    model = ""
+    for line in Path("/proc/cpuinfo").read_text().splitlines():
+        if line.startswith("model name"):
+            model = line.split(":", 1)[1].strip()
+            break
+    return f"{platform.node()}: {model}, {len(list(Path('/sys/devices/system/cpu').glob('cpu[0-9]*')))} cores"
+
+
+def store(entries, command):
+    data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
+    harness = data.setdefault("harness", {})
+    harness["description"] = (
+        "One-step convergence harness (bench/harness, bench/README.md): "
+        "from a written state, `steps` fixed steps of `dt` with a coupling, "
+        "against the reference coupling (PISO, 200 correctors, p_rgh to "
+        "1e-13) from the same state. l2_u_grains / l2_u_air: relative L2 of "
+        "U over the grains (alpha.air < 1/2) / the air; max_w_air: largest "
+        "|U_z| in the air; l2_p_base: relative L2 of p along the base; "
+        "l2_u_last_columns: relative L2 of U over the grains of the last "
+        "ten columns; cpu_ms_per_step over steps 2 to `steps`, serial.")
+    runs = harness.setdefault("runs", [])
+
+    def key(e):
+        return (e["state"], e["dt"], e["steps"], e["coupling"],
+                tuple(e["edits"]))
+    new = {key(e) for e in entries}
+    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
+             "command": command}
+    runs[:] = [e for e in runs if key(e) not in new] + [
+        dict(e, **stamp) for e in entries]
+    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="bench/harness",
+                                     description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="what", required=True)
+    ps = sub.add_parser("states", help="write the states")
+    ps.add_argument("--states", nargs="+", choices=sorted(STATES),
+                    default=["chute1", "layer2d"])
+    pr = sub.add_parser("run", help="measure couplings from the states")
+    pr.add_argument("--states", nargs="+", choices=sorted(STATES),
+                    default=["chute1", "layer2d"])
+    pr.add_argument("--dt", nargs="+", type=float, default=[1e-3, 4e-3])
+    pr.add_argument("--steps", nargs="+", type=int, default=[1, 10])
+    pr.add_argument("--couplings", nargs="+",
+                    default=["PISO-4", "PISO-10", "PISO-20", "SIMPLEC-1",
+                             "SIMPLEC-3"])
+    pr.add_argument("--edit", nargs="+", default=[],
+                    metavar="DICT:ENTRY=VALUE")
+    pr.add_argument("--no-store", action="store_true",
+                    help="print, do not write bench/coupling.json")
+    args = parser.parse_args(argv)
+    if args.what == "states":
+        for name in args.states:
+            make_state(name)
+        return 0
+    try:
+        for c in args.couplings:
+            coupling_settings(c)
+        for e in args.edit:
+            parse_edit(e)
+    except ValueError as err:
+        parser.error(str(err))
+    if any(d <= 0 for d in args.dt) or any(n < 1 for n in args.steps):
+        parser.error("need --dt > 0 and --steps >= 1")
+    for s in args.states:
+        if not state_dir(s).is_dir():
+            parser.error(f"no state {s}: run bench/harness states "
+                         f"--states {s} first")
+    command = "bench/harness " + " ".join(argv if argv is not None
+                                          else sys.argv[1:])
+    references, entries = {}, []
+    for state in args.states:
+        for dt in args.dt:
+            for steps in args.steps:
+                for coupling in args.couplings:
+                    e = measure(state, dt, steps, coupling, args.edit,
+                                references)
+                    entries.append(e)
+                    print(json.dumps(e), flush=True)
+                    if not args.no_store:
+                        store([e], command)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
