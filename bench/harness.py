@@ -23,10 +23,10 @@ time) run from the same state over the same steps:
 `run` appends its measurements to bench/coupling.json under "harness"
 (an entry with the same state, step, steps, coupling and edits is
 replaced).  --edit changes a dictionary of the case (for example
-constant/granularProperties:air.nu=1e-3) in the candidate and in its
-reference alike, so that a change of the model is judged against its own
-converged step; its errors against the unedited reference are written
-beside them.  See bench/README.md.
+constant/granularProperties:air.eta=1e-2): `states --edit` runs the state
+with it from the start, and `run --edit` runs the candidates and their
+reference with it from that state, so that a change of the model is
+judged against its own converged step.  See bench/README.md.
 """
 import argparse
 import datetime
@@ -35,6 +35,7 @@ import math
 import platform
 import re
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -141,17 +142,25 @@ STATES = {
 }
 
 
-def state_dir(name):
-    return WORK / "states" / name
+def _tag(edits):
+    return "-".join(re.sub(r"[^\w.]+", "_", e) for e in edits)
 
 
-def make_state(name):
-    """Run the case of state `name` to its time; write its cell centres."""
-    case = state_dir(name)
+def state_dir(name, edits=()):
+    """The state `name` of the case with the edits made from its start."""
+    return WORK / "states" / (f"{name}_{_tag(edits)}" if edits else name)
+
+
+def make_state(name, edits=()):
+    """Run the case of state `name`, with the edits, to its time; write its
+    cell centres."""
+    case = state_dir(name, edits)
     if case.exists():
         shutil.rmtree(case)
     case.parent.mkdir(parents=True, exist_ok=True)
     end_time = STATES[name](case)
+    for dictionary, entry, value in map(parse_edit, edits):
+        set_entry(case, dictionary, entry, value)
     set_entry(case, "system/controlDict", "writePrecision", 17)
     print(f"harness: state {name}: running to t = {end_time} s", flush=True)
     log, seconds = foam_output(case, SOLVER, timeout=6 * 3600)
@@ -194,15 +203,14 @@ def parse_edit(text):
 
 
 def run_name(state, dt, steps, coupling, edits):
-    tag = "-".join(re.sub(r"[^\w.]+", "_", e) for e in edits)
-    return f"{state}_dt{dt:g}_n{steps}_{coupling}" + (f"_{tag}" if tag
-                                                        else "")
+    return (f"{state}_dt{dt:g}_n{steps}_{coupling}"
+            + (f"_{_tag(edits)}" if edits else ""))
 
 
 def run_steps(state, dt, steps, coupling, edits):
     """Run `steps` steps of dt from the state with the coupling and edits;
     return (case, status, pressure solutions per step, CPU ms per step)."""
-    source = state_dir(state)
+    source = state_dir(state, edits)
     t0 = latest_time(source)
     case = WORK / "runs" / run_name(state, dt, steps, coupling, edits)
     if case.exists():
@@ -233,10 +241,12 @@ def run_steps(state, dt, steps, coupling, edits):
     cpu = [float(s) for s in re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s",
                                         text, re.M)]
     if res.returncode != 0 or len(solutions) != steps:
-        tail = [ln for ln in text.strip().splitlines() if ln.strip()][-3:]
-        return case, (f"failed (exit {res.returncode}) after "
-                      f"{len(solutions)} of {steps} steps: "
-                      + " / ".join(tail)[-300:]), None, None
+        how = (signal.Signals(-res.returncode).name if res.returncode < 0
+               else f"exit {res.returncode}")
+        fatal = re.findall(r"^--> FOAM FATAL.*\n+(.*)", text, re.M)
+        return case, (f"failed ({how}) after {len(solutions)} of {steps} "
+                      "steps" + (f": {fatal[-1].strip()}" if fatal
+                                 else "")), None, None
     ms = (1e3 * (cpu[-1] - cpu[0]) / (steps - 1)) if steps > 1 else None
     return case, "ok", sum(solutions) / steps, ms
 
@@ -248,9 +258,9 @@ def _rel(a, b):
     return err / norm if norm > 0 else (0.0 if err == 0 else math.nan)
 
 
-def compare(case, ref, state):
-    """Errors of the fields of case against ref (both at their last time)."""
-    source = state_dir(state)
+def compare(case, ref, source):
+    """Errors of the fields of case against ref (both at their last time),
+    on the cell centres of the state `source`."""
     C = read_field(source, latest_time(source), "C")
     t, tr = latest_time(case), latest_time(ref)
     assert math.isclose(float(t), float(tr), rel_tol=1e-9), (
@@ -299,7 +309,8 @@ def reference(state, dt, steps, edits, references):
 def measure(state, dt, steps, coupling, edits, references):
     """One candidate against its reference."""
     ref, ref_sol, ref_ms = reference(state, dt, steps, edits, references)
-    entry = {"state": state, "time": float(latest_time(state_dir(state))),
+    entry = {"state": state,
+             "time": float(latest_time(state_dir(state, edits))),
              "dt": dt, "steps": steps, "coupling": coupling,
              "edits": list(edits)}
     if coupling == "reference":
@@ -310,11 +321,7 @@ def measure(state, dt, steps, coupling, edits, references):
     entry.update(status=status, pressure_solutions_per_step=sol,
                  cpu_ms_per_step=ms, reference_cpu_ms_per_step=ref_ms)
     if status == "ok":
-        entry.update(compare(case, ref, state))
-        if edits:
-            plain = reference(state, dt, steps, [], references)[0]
-            entry["against_unedited_reference"] = _rounded(
-                compare(case, plain, state))
+        entry.update(compare(case, ref, state_dir(state, edits)))
     return _rounded(entry)
 
 
@@ -359,6 +366,8 @@ def main(argv=None):
     ps = sub.add_parser("states", help="write the states")
     ps.add_argument("--states", nargs="+", choices=sorted(STATES),
                     default=["chute1", "layer2d"])
+    ps.add_argument("--edit", nargs="+", default=[],
+                    metavar="DICT:ENTRY=VALUE")
     pr = sub.add_parser("run", help="measure couplings from the states")
     pr.add_argument("--states", nargs="+", choices=sorted(STATES),
                     default=["chute1", "layer2d"])
@@ -372,9 +381,14 @@ def main(argv=None):
     pr.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
     args = parser.parse_args(argv)
+    try:
+        for e in args.edit:
+            parse_edit(e)
+    except ValueError as err:
+        parser.error(str(err))
     if args.what == "states":
         for name in args.states:
-            make_state(name)
+            make_state(name, args.edit)
         return 0
     try:
         for c in args.couplings:
@@ -386,9 +400,11 @@ def main(argv=None):
     if any(d <= 0 for d in args.dt) or any(n < 1 for n in args.steps):
         parser.error("need --dt > 0 and --steps >= 1")
     for s in args.states:
-        if not state_dir(s).is_dir():
-            parser.error(f"no state {s}: run bench/harness states "
-                         f"--states {s} first")
+        if not state_dir(s, args.edit).is_dir():
+            parser.error(f"no state {state_dir(s, args.edit).name}: run "
+                         f"bench/harness states --states {s} "
+                         + " ".join(["--edit"] + args.edit if args.edit
+                                    else []) + " first")
     command = "bench/harness " + " ".join(argv if argv is not None
                                           else sys.argv[1:])
     references, entries = {}, []
