@@ -228,8 +228,7 @@ def run_steps(state, dt, steps, coupling, edits):
         set_entry(case, "system/controlDict", entry, value)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
-    for dictionary, entry, value in map(parse_edit, edits):
-        set_entry(case, dictionary, entry, value)
+    # The edits are in the state's files already
     log = case / f"log.{SOLVER}"
     with open(log, "w") as out:
         res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,

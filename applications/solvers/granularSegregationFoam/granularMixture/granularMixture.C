@@ -260,10 +260,38 @@ Foam::vector Foam::granularMixture::gHat() const
 }
 
 
-Foam::vector Foam::granularMixture::periodicGravity() const
+Foam::vector Foam::granularMixture::bodyForceGravity() const
 {
+    const List<vector> listed
+    (
+        getOrDefault<List<vector>>("bodyForceDirections", List<vector>())
+    );
+    for (const vector& d : listed)
+    {
+        if (mag(d) < SMALL)
+        {
+            FatalIOErrorInFunction(*this)
+                << "Invalid value of keyword 'bodyForceDirections' in "
+                << "dictionary " << name() << ": " << listed
+                << " (a direction of zero length)" << nl
+                << exit(FatalIOError);
+        }
+    }
+
     // Orthonormal basis of the separation vectors of the cyclic patches
+    // and of the listed directions
     List<vector> basis;
+    auto add = [&basis](vector s)
+    {
+        for (const vector& b : basis)
+        {
+            s -= (s & b)*b;
+        }
+        if (mag(s) > SMALL)
+        {
+            basis.append(s/mag(s));
+        }
+    };
     for (const polyPatch& pp : mesh_.boundaryMesh())
     {
         const auto* cpp = isA<cyclicPolyPatch>(pp);
@@ -276,22 +304,19 @@ Foam::vector Foam::granularMixture::periodicGravity() const
             }
         }
         reduce(s, maxMagSqrOp<vector>());
-        for (const vector& b : basis)
-        {
-            s -= (s & b)*b;
-        }
-        if (mag(s) > SMALL)
-        {
-            basis.append(s/mag(s));
-        }
+        add(s);
+    }
+    for (const vector& d : listed)
+    {
+        add(d);
     }
 
-    vector gc(Zero);
+    vector gb(Zero);
     for (const vector& b : basis)
     {
-        gc += (g_.value() & b)*b;
+        gb += (g_.value() & b)*b;
     }
-    return gc;
+    return gb;
 }
 
 
@@ -756,7 +781,7 @@ Foam::granularMixture::granularMixture
     nu_(STATE_FIELD("granularMixture:nu", dimViscosity, false)),
     G_(),
     segregationRate_(mesh_.nCells(), Zero),
-    gPeriodic_(Zero)
+    gBody_(Zero)
 {
     readAir();
 
@@ -837,10 +862,11 @@ Foam::granularMixture::granularMixture
     // p_rgh + rho*gh before the first rheology, which evaluates with that p
     calcMixture();
 
-    gPeriodic_ = periodicGravity();
-    if (mag(gPeriodic_) > 0)
+    gBody_ = bodyForceGravity();
+    if (mag(gBody_) > 0)
     {
-        Info<< "Gravity along the cyclic directions " << gPeriodic_
+        Info<< "Gravity along the cyclic directions and bodyForceDirections "
+            << gBody_
             << " acts as a body force; gh uses " << gHydrostatic().value()
             << nl << endl;
     }
@@ -853,7 +879,7 @@ Foam::granularMixture::granularMixture
 
 Foam::dimensionedVector Foam::granularMixture::gHydrostatic() const
 {
-    return dimensionedVector("g", g_.dimensions(), g_.value() - gPeriodic_);
+    return dimensionedVector("g", g_.dimensions(), g_.value() - gBody_);
 }
 
 
@@ -862,7 +888,7 @@ Foam::granularMixture::surfaceTensionForce() const
 {
     return
         fvc::interpolate(rho_)
-       *(dimensionedVector("gc", g_.dimensions(), gPeriodic_) & mesh_.Sf())
+       *(dimensionedVector("gb", g_.dimensions(), gBody_) & mesh_.Sf())
        /mesh_.magSf();
 }
 

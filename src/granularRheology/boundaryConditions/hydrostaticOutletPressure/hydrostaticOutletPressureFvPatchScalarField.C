@@ -6,7 +6,6 @@
 
 #include "hydrostaticOutletPressureFvPatchScalarField.H"
 #include "addToRunTimeSelectionTable.H"
-#include "gravityMeshObject.H"
 #include "volFields.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -19,7 +18,8 @@ hydrostaticOutletPressureFvPatchScalarField
 )
 :
     fixedGradientFvPatchScalarField(p, iF),
-    rhoName_("rho")
+    rhoName_("rho"),
+    ghName_("gh")
 {}
 
 
@@ -32,7 +32,8 @@ hydrostaticOutletPressureFvPatchScalarField
 )
 :
     fixedGradientFvPatchScalarField(p, iF),
-    rhoName_(dict.getOrDefault<word>("rho", "rho"))
+    rhoName_(dict.getOrDefault<word>("rho", "rho")),
+    ghName_(dict.getOrDefault<word>("gh", "gh"))
 {
     gradient() = Zero;
     fvPatchScalarField::operator=
@@ -54,7 +55,8 @@ hydrostaticOutletPressureFvPatchScalarField
 )
 :
     fixedGradientFvPatchScalarField(ptf, p, iF, mapper),
-    rhoName_(ptf.rhoName_)
+    rhoName_(ptf.rhoName_),
+    ghName_(ptf.ghName_)
 {}
 
 
@@ -65,7 +67,8 @@ hydrostaticOutletPressureFvPatchScalarField
 )
 :
     fixedGradientFvPatchScalarField(ptf),
-    rhoName_(ptf.rhoName_)
+    rhoName_(ptf.rhoName_),
+    ghName_(ptf.ghName_)
 {}
 
 
@@ -77,7 +80,8 @@ hydrostaticOutletPressureFvPatchScalarField
 )
 :
     fixedGradientFvPatchScalarField(ptf, iF),
-    rhoName_(ptf.rhoName_)
+    rhoName_(ptf.rhoName_),
+    ghName_(ptf.ghName_)
 {}
 
 
@@ -90,12 +94,14 @@ void Foam::hydrostaticOutletPressureFvPatchScalarField::updateCoeffs()
         return;
     }
 
-    const vector g(meshObjects::gravity::New(db().time()).value());
     const fvPatchScalarField& rhop =
         patch().lookupPatchField<volScalarField, scalar>(rhoName_);
+    const fvPatchScalarField& ghp =
+        patch().lookupPatchField<volScalarField, scalar>(ghName_);
 
-    // dp/dn = 0 with p = p_rgh + rho g.x and drho/dn = 0
-    gradient() = -rhop*(g & patch().nf());
+    // dp/dn = 0 with p = p_rgh + rho gh and drho/dn = 0; gh is linear, so
+    // its normal gradient on the patch is that of the solver's gh
+    gradient() = -rhop*ghp.snGrad();
 
     fixedGradientFvPatchScalarField::updateCoeffs();
 }
@@ -108,6 +114,7 @@ void Foam::hydrostaticOutletPressureFvPatchScalarField::write
 {
     fvPatchScalarField::write(os);
     os.writeEntryIfDifferent<word>("rho", "rho", rhoName_);
+    os.writeEntryIfDifferent<word>("gh", "gh", ghName_);
     writeEntry("value", os);
 }
 
