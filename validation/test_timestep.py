@@ -122,3 +122,29 @@ def test_layer_beyond_viscous_cfl(runs, check):
     # A lower bound: the largest step 10 times the viscous-CFL step at least
     check("implicit stress, layer: largest median Δt over the viscous-CFL "
           "step", max(n["viscous_cfl_ratio_median"] for n in table))
+
+
+DELTA_T_LINE = re.compile(r"^deltaT = (\S+) \(limited by ([^)]*)\)$", re.M)
+
+
+def test_time_step_names_its_limit(runs):
+    """Every step's deltaT line names what set it: maxDeltaT where the cap
+    binds (the implicit layer at 3e-5 s, beyond its CFL bound), a CFL
+    bound or the damped growth where it does not (1e-3 s)."""
+    counts = {}
+    for dt, (case, _, _, steps) in runs.items():
+        log = (case / "log.granularSegregationFoam").read_text()
+        lines = DELTA_T_LINE.findall(log)
+        assert len(lines) == log.count("\ndeltaT = "), (
+            f"a deltaT line of {case} names no limit")
+        assert len(lines) >= steps - 1, f"{case}: {len(lines)} deltaT lines"
+        for value, limit in lines:
+            if limit == "maxDeltaT":
+                assert float(value) == pytest.approx(dt, rel=1e-12), (
+                    f"limited by maxDeltaT {dt} at deltaT = {value}")
+        counts[dt] = {k: sum(1 for _, lim in lines if lim.startswith(k))
+                      for k in ("maxDeltaT", "maxCo", "maxAlphaCo", "growth")}
+    capped, free = counts[min(MAX_DELTA_T)], counts[max(MAX_DELTA_T)]
+    assert capped["maxDeltaT"] > 0.9 * sum(capped.values()), counts
+    assert free["maxCo"] + free["maxAlphaCo"] > 0.5 * sum(free.values()), (
+        counts)

@@ -116,7 +116,7 @@ int main(int argc, char *argv[])
         #include "granularCourantNo.H"
         #include "alphaCourantNo.H"
         #include "transportCourantNo.H"
-        #include "setDeltaT.H"
+        #include "setGranularDeltaT.H"
 
         ++runTime;
 

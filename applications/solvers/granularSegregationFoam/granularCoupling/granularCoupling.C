@@ -6,6 +6,8 @@
 
 #include "granularCoupling.H"
 #include "fvMatrices.H"
+#include "fvm.H"
+#include "fvc.H"
 #include "extrapolatedCalculatedFvPatchFields.H"
 #include "granularInput.H"
 
@@ -19,12 +21,22 @@ Foam::granularCoupling::pressureCouplingNames
 });
 
 
+const Foam::Enum<Foam::granularCoupling::transposeStress>
+Foam::granularCoupling::transposeStressNames
+({
+    { transposeStress::full, "full" },
+    { transposeStress::gradEta, "gradEta" },
+    { transposeStress::none, "none" },
+});
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
 :
     pimple_(pimple),
     coupling_(pressureCoupling::PISO),
+    transpose_(transposeStress::full),
     tolerance_(0),
     corr_(0),
     final_(false),
@@ -40,7 +52,8 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
         Info<< ", ended once the initial residual of p_rgh is below "
             << tolerance_;
     }
-    Info<< nl << endl;
+    Info<< "; transpose stress " << transposeStressNames[transpose_]
+        << nl << endl;
 
     if (pimple_.nCorrPIMPLE() > 1)
     {
@@ -64,6 +77,11 @@ void Foam::granularCoupling::read()
         "pressureCoupling", dict, pressureCoupling::PISO
     );
 
+    transpose_ = transposeStressNames.getOrDefault
+    (
+        "transposeStress", dict, transposeStress::full
+    );
+
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
     if (nCorr < 1)
     {
@@ -79,6 +97,28 @@ void Foam::granularCoupling::read()
             "0 <= pRghTolerance < 1; 0: run every corrector"
         );
     }
+}
+
+
+Foam::tmp<Foam::fvVectorMatrix> Foam::granularCoupling::divStress
+(
+    const incompressible::turbulenceModel& turbulence,
+    const volScalarField& rho,
+    volVectorField& U
+) const
+{
+    if (transpose_ == transposeStress::full)
+    {
+        return turbulence.divDevRhoReff(rho, U);
+    }
+
+    const volScalarField eta("etaEff", rho*turbulence.nuEff());
+    tmp<fvVectorMatrix> tEqn(-fvm::laplacian(eta, U));
+    if (transpose_ == transposeStress::gradEta)
+    {
+        tEqn.ref() -= fvc::grad(U) & fvc::grad(eta);
+    }
+    return tEqn;
 }
 
 
