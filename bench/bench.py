@@ -50,7 +50,7 @@ EXECUTION = re.compile(
     re.MULTILINE)
 NUMBER = r"([-+.0-9eE]+|nan|inf)"
 STEP_TIME = re.compile(r"^Time = ([-+.0-9eE]+)$", re.MULTILINE)
-DELTA_T = re.compile(r"^deltaT = ([-+.0-9eE]+)(?: \(limited by [^)]*\))?$",
+DELTA_T = re.compile(r"^deltaT = ([-+.0-9eE]+)(?: \(limited by .*\))?$",
                      re.MULTILINE)
 CFL = re.compile(
     rf"^CFL \(4\.11\) max: convective = {NUMBER} viscous = {NUMBER} "
