@@ -45,7 +45,7 @@ sys.path.insert(0, str(ROOT / "validation"))
 
 import numpy as np  # noqa: E402
 
-from cases import foam, foam_output, set_entry  # noqa: E402
+from cases import foam, set_entry  # noqa: E402
 from chute.post import cell_centres, read_field  # noqa: E402
 
 WORK = ROOT / "bench" / "work" / "harness"
@@ -163,12 +163,25 @@ def make_state(name, edits=()):
         set_entry(case, dictionary, entry, value)
     set_entry(case, "system/controlDict", "writePrecision", 17)
     print(f"harness: state {name}: running to t = {end_time} s", flush=True)
-    log, seconds = foam_output(case, SOLVER, timeout=6 * 3600)
-    (case / f"log.{SOLVER}").write_text(log)
+    log = case / f"log.{SOLVER}"
+    with open(log, "w") as out:
+        res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,
+                             stderr=subprocess.STDOUT, timeout=6 * 3600)
+    if res.returncode != 0:
+        text = log.read_text()
+        times = re.findall(r"^Time = (\S+)", text, re.M)
+        how = (signal.Signals(-res.returncode).name if res.returncode < 0
+               else f"exit {res.returncode}")
+        status = (f"the state failed ({how}) at t = "
+                  f"{times[-1] if times else 0} s of {end_time} s")
+        print(f"harness: state {name}: {status}", flush=True)
+        return {"state": name, "time": float(end_time), "dt": None,
+                "steps": 0, "coupling": "state", "edits": list(edits),
+                "status": status}
     time_name = latest_time(case)
     cell_centres(case, time_name)
-    print(f"harness: state {name}: t = {time_name} in {seconds:.0f} s",
-          flush=True)
+    print(f"harness: state {name}: t = {time_name}", flush=True)
+    return None
 
 
 def latest_time(case):
@@ -385,10 +398,14 @@ def main(argv=None):
             parse_edit(e)
     except ValueError as err:
         parser.error(str(err))
+    command = "bench/harness " + " ".join(argv if argv is not None
+                                          else sys.argv[1:])
     if args.what == "states":
-        for name in args.states:
-            make_state(name, args.edit)
-        return 0
+        failed = [e for e in (make_state(name, args.edit)
+                              for name in args.states) if e]
+        if failed:
+            store(failed, command)
+        return 1 if failed else 0
     try:
         for c in args.couplings:
             coupling_settings(c)
@@ -404,8 +421,6 @@ def main(argv=None):
                          f"bench/harness states --states {s} "
                          + " ".join(["--edit"] + args.edit if args.edit
                                     else []) + " first")
-    command = "bench/harness " + " ".join(argv if argv is not None
-                                          else sys.argv[1:])
     references, entries = {}, []
     for state in args.states:
         for dt in args.dt:
