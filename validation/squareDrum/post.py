@@ -404,7 +404,11 @@ def main(argv=None):
             figure10(case, out / f"figure10_N{s['N']}.png")
         figure_lobes(case, out / f"lobes_N{s['N']}.png")
     numbers = _json_safe(numbers)
-    (out / "drum.json").write_text(json.dumps(numbers, indent=2))
+    # Other entries of drum.json (the tension windows of tension.py) stay
+    path = out / "drum.json"
+    data = json.loads(path.read_text()) if path.exists() else {}
+    data.update(numbers)
+    path.write_text(json.dumps(data, indent=2) + "\n")
     print(json.dumps(numbers, indent=2))
 
 
