@@ -177,6 +177,61 @@ def tutorials_section():
     return lines
 
 
+def harness_section():
+    """The coupling harness's measurements (bench/coupling.json, written
+    by bench/harness): every coupling against 200 correctors from the same
+    state, over the same steps."""
+    path = BENCH / "coupling.json"
+    runs = (json.loads(path.read_text()).get("harness", {}).get("runs", [])
+            if path.exists() else [])
+    if not runs:
+        return []
+    lines = [
+        "## Convergence of the coupling within a step",
+        "",
+        "`bench/harness` (see `bench/README.md`): from a written state, "
+        "each coupling runs `steps` fixed steps of Δt, serial; errors are "
+        "relative L2 norms against the reference of 200 PISO correctors "
+        "(p_rgh to 1e-13) from the same state over the same steps: U over "
+        "the grains (φ^a < ½) and over the air, p along the base. A model "
+        "edit (`bench/harness states --edit`) is judged against its own "
+        "reference. Numbers in `bench/coupling.json` (`harness`), rendered "
+        "here by `bench/report.py`; each row's command and date are there.",
+        "",
+        "| state | model edits | Δt [s] | steps | coupling | U grains | "
+        "U air | p base | max \\|w\\| air (reference) [m/s] | "
+        "pressure solutions / step | CPU ms / step (reference) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+
+    def edits(r):
+        return ", ".join(
+            "`" + e.split(":", 1)[-1] + "`" for e in r["edits"]) or "–"
+
+    def g(x):
+        return "–" if x is None else f"{x:.2g}"
+
+    order = {"chute1": 0, "chute20": 1, "layer2d": 2}
+    for r in sorted(runs, key=lambda r: (
+            order.get(r["state"], 9), r["edits"], r["dt"] or 0, r["steps"],
+            r["coupling"].split("-")[0],
+            int(r["coupling"].split("-")[-1]) if "-" in r["coupling"]
+            else 0)):
+        if r["status"] != "ok":
+            cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
+                     r["coupling"], r["status"], "", "", "", "", ""]
+        else:
+            cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
+                     r["coupling"], g(r["l2_u_grains"]), g(r["l2_u_air"]),
+                     g(r["l2_p_base"]),
+                     f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
+                     g(r["pressure_solutions_per_step"]),
+                     f"{g(r['cpu_ms_per_step'])} "
+                     f"({g(r.get('reference_cpu_ms_per_step'))})"]
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    return lines
+
+
 def implicit_entries(results):
     """The implicit configuration's fvSolution entries as they read in the
     file, e.g. 'momentumPredictor yes; viscousStress implicit; ...'."""
@@ -271,9 +326,9 @@ def write(results, path):
     section = adaptive_section(results)
     if section:
         lines += ["", *section]
-    section = tutorials_section()
-    if section:
-        lines += ["", *section]
+    for section in (harness_section(), tutorials_section()):
+        if section:
+            lines += ["", *section]
     notes = warnings(results)
     if notes:
         lines += ["", "## Warnings", "", *notes]
