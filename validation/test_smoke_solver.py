@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pytest
 
-from cases import fresh_case, run_case, volumes
+from cases import foam, fresh_case, run_case, volumes
 
 pytestmark = pytest.mark.smoke
 
@@ -54,3 +54,36 @@ def test_rotating_box(foam_env):
     bounds = read_minmax(case)
     assert bounds.min() > -1e-10 and bounds.max() < 1 + 1e-10, (
         f"phase fractions outside [0, 1]: [{bounds.min()}, {bounds.max()}]")
+
+
+GRAIN_PRESSURE = re.compile(
+    r"^Grain pressure seen by the rheology: min = (\S+) Pa(.*)$", re.M)
+
+
+def test_grain_pressure_reported(foam_env):
+    """The log gives the lowest pressure seen by the rheology in the grains
+    at the start and after every step, and calls it tension below
+    -tensionWarning.  The periodic layer (open: p = p_rgh + rho gh) starts
+    from p_rgh = 0, so p = rho g.x < 0 in the grains at the start: at the
+    top grain cell, -rho g_z z; one step later the pressure holds the
+    grains' weight and is positive."""
+    case = fresh_case("inclinedLayer", dest="tension/layer")
+    foam(case, "foamDictionary", "-entry", "endTime", "-set", "2e-3",
+         "system/controlDict")
+    foam(case, "foamDictionary", "-entry", "writeInterval", "-set", "2e-3",
+         "system/controlDict")
+    run_case(case)
+    log = (case / "log.granularSegregationFoam").read_text()
+    lines = GRAIN_PRESSURE.findall(log)
+    steps = log.count("\nTime = ")
+    assert steps >= 2 and len(lines) == steps + 1, (
+        f"{len(lines)} grain pressure lines for {steps} steps")
+
+    # 60 cells over 6 mm, grains below 5 mm: the top grain cell's centre
+    # at 4.95 mm; rho = Phi rho_* = 1500, g_z = -9.81 cos 24
+    rho, g_z, z_top = 1500.0, -8.961880939473915, 4.95e-3
+    first, note = float(lines[0][0]), lines[0][1]
+    assert first == pytest.approx(rho * g_z * z_top, rel=1e-6), lines[0]
+    assert "tension in the grains" in note, lines[0]
+    last, note = float(lines[-1][0]), lines[-1][1]
+    assert last > 0 and "tension" not in note, lines[-1]

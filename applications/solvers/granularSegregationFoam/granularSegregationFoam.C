@@ -96,6 +96,7 @@ int main(int argc, char *argv[])
 
     #include "createProgress.H"
     mixture.report();
+    mixture.reportGrainPressure(p, p_rgh.needReference());
 
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -209,6 +210,7 @@ int main(int argc, char *argv[])
         }
 
         coupling.report();
+        mixture.reportGrainPressure(p, p_rgh.needReference());
         mixture.checkFinite(U, p);
 
         runTime.write();

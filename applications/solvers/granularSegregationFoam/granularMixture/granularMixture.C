@@ -781,7 +781,14 @@ Foam::granularMixture::granularMixture
     nu_(STATE_FIELD("granularMixture:nu", dimViscosity, false)),
     G_(),
     segregationRate_(mesh_.nCells(), Zero),
-    gBody_(Zero)
+    gBody_(Zero),
+    tensionWarning_
+    (
+        granularInput::readNonNegativeOrDefault
+        (
+            *this, "tensionWarning", dimPressure, 1
+        )
+    )
 {
     readAir();
 
@@ -1048,6 +1055,57 @@ Foam::scalar Foam::granularMixture::airPressureLevel
 }
 
 
+Foam::tmp<Foam::scalarField> Foam::granularMixture::rheologyPressure
+(
+    const volScalarField& p,
+    const bool closed
+) const
+{
+    if (!closed)
+    {
+        return tmp<scalarField>::New(p.primitiveField());
+    }
+    return
+        p.primitiveField()
+      - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
+      - airPressureLevel(p);
+}
+
+
+Foam::scalar Foam::granularMixture::reportGrainPressure
+(
+    const volScalarField& p,
+    const bool closed
+) const
+{
+    const scalarField pg(rheologyPressure(p, closed));
+    const scalarField& air = alphas_[0].primitiveField();
+    scalar lowest = GREAT;
+    forAll(pg, celli)
+    {
+        if (air[celli] < 0.5)
+        {
+            lowest = min(lowest, pg[celli]);
+        }
+    }
+    reduce(lowest, minOp<scalar>());
+    if (lowest == GREAT)
+    {
+        return lowest;
+    }
+
+    Info<< "Grain pressure seen by the rheology: min = " << lowest << " Pa";
+    if (lowest < -tensionWarning_.value())
+    {
+        Info<< ": tension in the grains, below -tensionWarning "
+            << tensionWarning_.value() << " Pa (" << name()
+            << "); the rheology sees p_min there";
+    }
+    Info<< endl;
+    return lowest;
+}
+
+
 void Foam::granularMixture::correctRheology
 (
     const volScalarField& p,
@@ -1056,26 +1114,9 @@ void Foam::granularMixture::correctRheology
 {
     const label nCells = mesh_.nCells();
 
-    // Pressure relative to the air (see the class description)
-    if (!closed)
-    {
-        pGranular_.primitiveFieldRef() =
-            max(p.primitiveField(), rheology_.pMin().value());
-        pGranular_.correctBoundaryConditions();
-    }
-    else
-    {
-        const scalar c = airPressureLevel(p);
-
-        pGranular_.primitiveFieldRef() = max
-        (
-            p.primitiveField()
-          - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
-          - c,
-            rheology_.pMin().value()
-        );
-        pGranular_.correctBoundaryConditions();
-    }
+    pGranular_.primitiveFieldRef() =
+        max(rheologyPressure(p, closed), rheology_.pMin().value());
+    pGranular_.correctBoundaryConditions();
 
     // (2.4): |D| of the previous iterate of U, shear rate 2|D|
     scalarField normD(nCells);
@@ -1377,6 +1418,10 @@ bool Foam::granularMixture::read()
                 << " start it again" << nl
                 << exit(FatalIOError);
         }
+        tensionWarning_ = granularInput::readNonNegativeOrDefault
+        (
+            *this, "tensionWarning", dimPressure, 1
+        );
         rheology_.read(*this);
         segregation_.read(*this, "segregation", rheology_);
         diffusion_.read(*this, "diffusion", rheology_);
