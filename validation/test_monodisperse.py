@@ -8,11 +8,11 @@ in the lower half, air above, a few fixed steps with writes.
   air (as MULES leaves them where it undershoots): the run reaches its
   writes and every logged segregation index is finite and 0 (a uniform
   mix), every monitored invariant finite.
-- One grain phase, the README's recipe, without segregation and diffusion
-  (or with both empty): setGranularFields sets it, the solver runs and
-  writes, the log shows the phase volumes and no segregation index, the
-  base pressure is the weight Phi rho_* g h of the grains (plus the air's),
-  and granularPictures draws it.
+- One grain phase, the recipe of doc/model.md, without segregation and
+  diffusion (or with both empty): setGranularFields sets it, the solver
+  runs and writes, the log shows the phase volumes and no segregation
+  index, the base pressure is the weight Phi rho_* g h of the grains (plus
+  the air's), and granularPictures draws it.
 - One grain phase given a pair law (segregation or diffusion): refused with
   a FatalIOError naming granularProperties, the keyword and the entry.
 - The square drum (tutorials/squareDrum, 8 x 8) with one grain phase:
@@ -161,14 +161,14 @@ def assert_finite_invariants(case):
 # One grain phase
 # ---------------------------------------------------------------------------
 
-def readme_recipe():
-    """The granularProperties of the README's monodisperse recipe: the code
-    block after its paragraph "Monodisperse (one grain phase)"."""
-    text = (PROJECT / "README.md").read_text()
-    start = text.find("**Monodisperse (one grain phase).**")
-    assert start >= 0, "no monodisperse recipe in README.md"
+def doc_recipe():
+    """The granularProperties of the monodisperse recipe of doc/model.md: the
+    code block after its heading "Monodisperse (one grain phase)"."""
+    text = (PROJECT / "doc" / "model.md").read_text()
+    start = text.find("\n## Monodisperse (one grain phase)\n")
+    assert start >= 0, "no monodisperse recipe in doc/model.md"
     m = re.search(r"\n```\n(.*?\n)```\n", text[start:], re.S)
-    assert m, "no code block after the monodisperse recipe in README.md"
+    assert m, "no code block after the monodisperse recipe in doc/model.md"
     return m.group(1)
 
 SET_FIELDS = f"""FoamFile
@@ -192,16 +192,16 @@ velocity        (0 0 0);
 
 
 def one_phase(dest, pairs):
-    """The column with the README's monodisperse granularProperties, its one
-    grain phase 'grains' in the lower half, set by setGranularFields; pairs:
-    'absent' (no segregation, no diffusion), 'empty' (both empty) or the
-    text added to the recipe."""
+    """The column with the monodisperse granularProperties of doc/model.md,
+    its one grain phase 'grains' in the lower half, set by setGranularFields;
+    pairs: 'absent' (no segregation, no diffusion), 'empty' (both empty) or
+    the text added to the recipe."""
     case = column(dest, ("air", "grains"))
     added = {"absent": "", "empty": "segregation { }\ndiffusion { }\n"}
     path = case / GP
     header = path.read_text()
     header = header[:header.index("// * * *")]
-    path.write_text(header + readme_recipe() + added.get(pairs, pairs))
+    path.write_text(header + doc_recipe() + added.get(pairs, pairs))
     for name in ("air", "grains"):
         (case / "0" / f"alpha.{name}").write_text(alpha_file(name, [0] * NZ))
     (case / "system" / "setGranularFieldsDict").write_text(SET_FIELDS)
