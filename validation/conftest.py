@@ -104,8 +104,9 @@ def case_copy(tmp_path):
 # A test states a measured number against its tolerance through the `check`
 # fixture, which asserts it and records it; at the end of a session every
 # test's outcome, time and checks are merged into STATUS (keyed by test, so
-# a partial run updates only its own tests), from which validation/status.py
-# writes the README's status table.
+# a partial run updates only its own tests), from which
+# `validation/status.py --doc` writes the status table into doc/validation.md
+# (section Status).
 
 STATUS = reference_rule.STATUS
 
