@@ -1,6 +1,6 @@
 """ParaView state of the bulbous head: the fields at the last written time,
-the layer (0.62 m by 9.3 mm) stretched 8 times vertically.  Usage:
-*ParaView* in the project's README (paraview --state=paraviewState.py)."""
+the layer (0.62 m by 9.3 mm) stretched 8 times vertically.  Usage: ParaView
+states in doc/visualisation.md (paraview --state=paraviewState.py)."""
 import os
 import sys
 

@@ -1,6 +1,6 @@
 """ParaView state of the chute: the fields at the last written time, the
-layer (0.62 m by 6.2 mm) stretched 10 times vertically.  Usage: *ParaView*
-in the project's README (paraview --state=paraviewState.py)."""
+layer (0.62 m by 6.2 mm) stretched 10 times vertically.  Usage: ParaView
+states in doc/visualisation.md (paraview --state=paraviewState.py)."""
 import os
 import sys
 

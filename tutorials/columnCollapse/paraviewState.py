@@ -1,5 +1,5 @@
 """ParaView state of the granular column collapse: the fields at the last
-written time.  Usage: *ParaView* in the project's README
+written time.  Usage: ParaView states in doc/visualisation.md
 (paraview --state=paraviewState.py)."""
 import os
 import sys

@@ -1,6 +1,6 @@
 """ParaView state of the segregation column, one cell wide: profiles of the
-fields at the last written time.  Usage: *ParaView* in the project's
-README (paraview --state=paraviewState.py)."""
+fields at the last written time.  Usage: ParaView states in
+doc/visualisation.md (paraview --state=paraviewState.py)."""
 import os
 import sys
 

@@ -1,5 +1,5 @@
 """ParaView state of the square drum: the fields at the last written time
-in the drum as it has turned.  Usage: *ParaView* in the project's README
+in the drum as it has turned.  Usage: ParaView states in doc/visualisation.md
 (paraview --state=paraviewState.py)."""
 import os
 import sys

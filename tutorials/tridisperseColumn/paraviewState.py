@@ -1,6 +1,6 @@
 """ParaView state of the tridisperse column: profiles of the three grain
-fractions, the air and the flow at the last written time.  Usage:
-*ParaView* in the project's README (paraview --state=paraviewState.py)."""
+fractions, the air and the flow at the last written time.  Usage: ParaView
+states in doc/visualisation.md (paraview --state=paraviewState.py)."""
 import os
 import sys
 
