@@ -28,7 +28,7 @@ Python state with --state; File > Load State does the same):
     paraview --state=paraviewState.py
 
 Headless, a screenshot of the whole layout (pvbatch needs an X display:
-Xvfb, see the README):
+Xvfb, see doc/visualisation.md, ParaView states):
 
     pvbatch paraviewState.py --screenshot figures/paraview.png [--case DIR]
 
