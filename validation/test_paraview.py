@@ -2,8 +2,8 @@
 
 Every flow tutorial runs a few steps (the drum is the small drum of
 test_pictures, turned by 45 degrees) and its own paraviewState.py is run by
-pvbatch under Xvfb, as the README says.  Checked on the picture and on
-pvbatch's summary line:
+pvbatch under Xvfb, as doc/visualisation.md (ParaView states) says.
+Checked on the picture and on pvbatch's summary line:
 
 - the PNG has the size of its grid of views, and every view shows the
   field: several colours in the mesh area (a chart: its curve);
