@@ -200,8 +200,9 @@ def harness_section():
         "",
         "| state | model edits | Δt [s] | steps | coupling | U grains | "
         "U air | p base | max \\|w\\| air (reference) [m/s] | "
+        "lowest p grains (reference) [Pa] | "
         "pressure solutions / step | CPU ms / step (reference) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
 
     def edits(r):
@@ -211,7 +212,7 @@ def harness_section():
     def g(x):
         return "–" if x is None else f"{x:.2g}"
 
-    order = {"chute1": 0, "chute20": 1, "layer2d": 2}
+    order = {"chute1": 0, "chute20": 1, "layer2d": 2, "drum50": 3}
     for r in sorted(runs, key=lambda r: (
             order.get(r["state"], 9), r["edits"], r["dt"] or 0, r["steps"],
             r["coupling"].split("-")[0],
@@ -219,12 +220,14 @@ def harness_section():
             else 0)):
         if r["status"] != "ok":
             cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
-                     r["coupling"], r["status"], "", "", "", "", ""]
+                     r["coupling"], r["status"], "", "", "", "", "", ""]
         else:
             cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
                      r["coupling"], g(r["l2_u_grains"]), g(r["l2_u_air"]),
                      g(r["l2_p_base"]),
                      f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
+                     f"{g(r.get('min_p_grains'))} "
+                     f"({g(r.get('min_p_grains_reference'))})",
                      g(r["pressure_solutions_per_step"]),
                      f"{g(r['cpu_ms_per_step'])} "
                      f"({g(r.get('reference_cpu_ms_per_step'))})"]
