@@ -7,10 +7,12 @@ free-surface angle, the peak speed relative to the drum), the phase volumes
 and bounds, the `rings` sets (phi^s on circles about the axis, sampled by
 OpenFOAM) and the ascii fields and moved points of the time directories.
 
-    /usr/bin/python3 validation/squareDrum/post.py CASE [CASE ...] [--out DIR]
+    /usr/bin/python3 validation/squareDrum/post.py CASE [CASE ...] [--out DIR] [--readme README]
 
-writes figure13.png (J(t) of every case given), and for the finest case
-figure10.png, figure11.png, lobes.png and drum.json (the numbers).
+writes figure13.png (J(t) of every case given), and for every case, keyed
+by its mesh and correctors (N50_30correctors), figure10, figure11 and the
+lobes plot, and its numbers into drum.json; with --readme README the runs
+of drum.json are rendered into that README between its markers.
 """
 import argparse
 import json
@@ -50,6 +52,19 @@ def parameters(case):
     text = re.sub(r"//.*", "", text)
     return {k: float(v) for k, v in re.findall(
         r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+
+
+def n_correctors(case):
+    """nCorrectors of the PIMPLE dictionary of case/system/fvSolution."""
+    text = re.sub(r"//.*", "", _read_text(Path(case) / "system" / "fvSolution"))
+    m = re.search(r"\bnCorrectors\s+(\d+)\s*;", text)
+    assert m, f"no nCorrectors in {case}/system/fvSolution"
+    return int(m.group(1))
+
+
+def label(case):
+    """The key of a run in drum.json and its figures: N and correctors."""
+    return f"N{int(parameters(case)['N'])}_{n_correctors(case)}correctors"
 
 
 def _table(path):
@@ -234,8 +249,8 @@ def summary(case):
     par = parameters(case)
     m = monitor(case)
     v = volumes(case)
-    out = {"N": int(par["N"]), "etaMax": par["etaMax"],
-           "endTime": float(m["t"][-1])}
+    out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
+           "etaMax": par["etaMax"], "endTime": float(m["t"][-1])}
     out["J_revolution"] = {
         f"{k * PERIOD:g}": float(np.interp(k * PERIOD, m["t"], m["J"]))
         for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
@@ -252,6 +267,14 @@ def summary(case):
     sample_rings(case)
     names = [n for n in time_names(case)
              if float(n) >= m["t"][-1] - PERIOD - 1e-9]
+    # The lowest pressure in the grains (phi^a < 1/2) at the written times
+    # of the last revolution: p is levelled on the air, so this is the
+    # pressure seen by the rheology to within rho^a g.x (1.4 Pa)
+    lowest = [float(read_field(case, n, "p")[
+        read_field(case, n, "alpha.air") < 0.5].min()) for n in names]
+    out["lowest_p_grains_last_revolution"] = min(lowest)
+    out["written_times_with_negative_p_grains"] = int(
+        sum(1 for x in lowest if x < 0))
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -293,7 +316,8 @@ def figure13(cases, out):
         m = monitor(case)
         ok = np.isfinite(m["J"])
         ax.plot(m["t"][ok], m["J"][ok],
-                label=f"N = {int(parameters(case)['N'])}")
+                label=f"N = {int(parameters(case)['N'])}, "
+                      f"{n_correctors(case)} correctors")
     ax.set_xlabel("t [s]")
     ax.set_ylabel(r"$\mathcal{J}(t)$  (7.6)")
     ax.set_xlim(0, None)
@@ -387,28 +411,84 @@ def figure_lobes(case, out):
     _save(fig, out)
 
 
+README_BEGIN = "<!-- drum results: validation/squareDrum/post.py --readme -->"
+README_END = "<!-- end of drum results -->"
+
+
+def results_table(numbers):
+    """Markdown rows of the runs in numbers (drum.json's run entries)."""
+    runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
+    runs.sort(key=lambda r: (r["N"], r["nCorrectors"]))
+
+    def g(x, fmt="{:.3g}"):
+        return "–" if x is None else fmt.format(x)
+    rows = [
+        ("J at 10, 20, …, 80 s", lambda r: ", ".join(
+            g(v, "{:.4f}") for v in r["J_revolution"].values())),
+        ("surface inclination after 20 s, mean (range)", lambda r:
+         f"{r['surface_angle_mean_deg']:.1f}° "
+         f"({r['surface_angle_range_deg'][0]:.1f}–"
+         f"{r['surface_angle_range_deg'][1]:.1f}°)"),
+        ("peak speed relative to the drum, mean / max [m/s]", lambda r:
+         f"{r['peak_speed_mean']:.3f} / {r['peak_speed_max']:.3f}"),
+        ("small-rich lobes on r = 0.6 L, median over the last revolution",
+         lambda r: g(r["lobes_median"], "{:g}")),
+        ("lowest p in the grains, written times of the last revolution [Pa]",
+         lambda r: f"{r['lowest_p_grains_last_revolution']:.1f} "
+                   f"({r['written_times_with_negative_p_grains']} of "
+                   f"{len(r['lobes_last_revolution'])} times below 0)"),
+        ("phase volumes, largest relative drift", lambda r: g(max(
+            r["volume_drift_air"], r["volume_drift_small"],
+            r["volume_drift_large"]), "{:.1e}")),
+        ("fractions, min / max", lambda r:
+         f"{r['alpha_min']:.1e} / {r['alpha_max']:g}"),
+    ]
+    head = "| | " + " | ".join(
+        f"N = {r['N']}, {r['nCorrectors']} correctors" for r in runs) + " |"
+    lines = [head, "|---" * (len(runs) + 1) + "|"]
+    for name, fn in rows:
+        lines.append(f"| {name} | " + " | ".join(fn(r) for r in runs) + " |")
+    return "\n".join(lines)
+
+
+def write_readme(path, numbers):
+    """Replace the table between the markers of the drum README."""
+    text = path.read_text()
+    i, j = text.find(README_BEGIN), text.find(README_END)
+    assert 0 <= i < j, f"no drum results markers in {path}"
+    path.write_text(text[:i + len(README_BEGIN)] + "\n\n"
+                    + results_table(numbers) + "\n\n" + text[j:])
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("cases", nargs="+", type=Path)
     parser.add_argument("--out", type=Path, default=None)
+    parser.add_argument("--readme", type=Path, default=None,
+                        help="render the runs of OUT/drum.json into this "
+                             "README, between its drum results markers")
     args = parser.parse_args(argv)
-    cases = sorted(args.cases, key=lambda c: parameters(c)["N"])
+    cases = sorted(args.cases, key=lambda c: (parameters(c)["N"],
+                                              n_correctors(c)))
     out = args.out or cases[-1] / "figures"
     figure13(cases, out / "figure13.png")
     numbers = {}
     for case in cases:
         s = summary(case)
-        numbers[f"N{s['N']}"] = s
+        key = label(case)
+        numbers[key] = s
         if s["endTime"] >= 80 - 1e-6:
-            figure11(case, out / f"figure11_N{s['N']}.png")
-            figure10(case, out / f"figure10_N{s['N']}.png")
-        figure_lobes(case, out / f"lobes_N{s['N']}.png")
+            figure11(case, out / f"figure11_{key}.png")
+            figure10(case, out / f"figure10_{key}.png")
+        figure_lobes(case, out / f"lobes_{key}.png")
     numbers = _json_safe(numbers)
     # Other entries of drum.json (the tension windows of tension.py) stay
     path = out / "drum.json"
     data = json.loads(path.read_text()) if path.exists() else {}
     data.update(numbers)
     path.write_text(json.dumps(data, indent=2) + "\n")
+    if args.readme:
+        write_readme(args.readme, data)
     print(json.dumps(numbers, indent=2))
 
 
