@@ -46,7 +46,7 @@ sys.path.insert(0, str(ROOT / "validation"))
 import numpy as np  # noqa: E402
 
 from cases import foam, set_entry  # noqa: E402
-from chute.post import cell_centres, read_field  # noqa: E402
+from chute.post import cell_centres, read_field, time_names  # noqa: E402
 
 WORK = ROOT / "bench" / "work" / "harness"
 RESULTS = ROOT / "bench" / "coupling.json"
@@ -174,6 +174,19 @@ def state_dir(name, edits=()):
     return WORK / "states" / (f"{name}_{_tag(edits)}" if edits else name)
 
 
+def run_solver(case, timeout):
+    """Run the solver in case, its output in case/log.<solver>; return
+    (how it ended: "ok", a signal's name or "exit N", the log's text)."""
+    log = case / f"log.{SOLVER}"
+    with open(log, "w") as out:
+        res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,
+                             stderr=subprocess.STDOUT, timeout=timeout)
+    how = ("ok" if res.returncode == 0
+           else signal.Signals(-res.returncode).name if res.returncode < 0
+           else f"exit {res.returncode}")
+    return how, log.read_text()
+
+
 def make_state(name, edits=()):
     """Run the case of state `name`, with the edits, to its time; write its
     cell centres."""
@@ -186,15 +199,9 @@ def make_state(name, edits=()):
         set_entry(case, dictionary, entry, value)
     set_entry(case, "system/controlDict", "writePrecision", 17)
     print(f"harness: state {name}: running to t = {end_time} s", flush=True)
-    log = case / f"log.{SOLVER}"
-    with open(log, "w") as out:
-        res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,
-                             stderr=subprocess.STDOUT, timeout=6 * 3600)
-    if res.returncode != 0:
-        text = log.read_text()
+    how, text = run_solver(case, 6 * 3600)
+    if how != "ok":
         times = re.findall(r"^Time = (\S+)", text, re.M)
-        how = (signal.Signals(-res.returncode).name if res.returncode < 0
-               else f"exit {res.returncode}")
         status = (f"the state failed ({how}) at t = "
                   f"{times[-1] if times else 0} s of {end_time} s")
         print(f"harness: state {name}: {status}", flush=True)
@@ -208,11 +215,10 @@ def make_state(name, edits=()):
 
 
 def latest_time(case):
-    """Name of the latest time directory of case (not 0)."""
-    names = [p.name for p in Path(case).iterdir() if p.is_dir()
-             and re.fullmatch(r"[0-9.eE+-]+", p.name)]
+    """Name of the latest time directory of case that holds fields."""
+    names = time_names(case)
     assert names, f"no time directory in {case}"
-    return max(names, key=float)
+    return names[-1]
 
 
 # --------------------------------------------------------------------------
@@ -259,29 +265,28 @@ def run_steps(state, dt, steps, coupling, edits):
                          ("adjustTimeStep", "no"), ("deltaT", repr(dt)),
                          ("endTime", repr(end)),
                          ("writeControl", "timeStep"),
-                         ("writeInterval", steps), ("writePrecision", 17),
+                         # every step: a restart keeps its time index, so
+                         # an interval of `steps` need not end on the last
+                         ("writeInterval", 1), ("writePrecision", 17),
                          ("timePrecision", 10), ("functions", "{}")):
         set_entry(case, "system/controlDict", entry, value)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
     # The edits are in the state's files already
-    log = case / f"log.{SOLVER}"
-    with open(log, "w") as out:
-        res = subprocess.run([SOLVER, "-case", str(case)], stdout=out,
-                             stderr=subprocess.STDOUT, timeout=3600)
-    text = log.read_text()
+    how, text = run_solver(case, 3600)
     solutions = [int(n) for n in
                  re.findall(r"Pressure coupling: (\d+) pressure solutions",
                             text)]
     cpu = [float(s) for s in re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s",
                                         text, re.M)]
-    if res.returncode != 0 or len(solutions) != steps:
-        how = (signal.Signals(-res.returncode).name if res.returncode < 0
-               else f"exit {res.returncode}")
+    if how != "ok" or len(solutions) != steps:
         fatal = re.findall(r"^--> FOAM FATAL.*\n+(.*)", text, re.M)
         return case, (f"failed ({how}) after {len(solutions)} of {steps} "
                       "steps" + (f": {fatal[-1].strip()}" if fatal
                                  else "")), None, None
+    last = float(latest_time(case))
+    assert math.isclose(last, end, rel_tol=1e-9), (
+        f"{case}: the last written time {last} is not the end {end}")
     ms = (1e3 * (cpu[-1] - cpu[0]) / (steps - 1)) if steps > 1 else None
     return case, "ok", sum(solutions) / steps, ms
 

@@ -209,20 +209,27 @@ def harness_section():
         return ", ".join(
             "`" + e.split(":", 1)[-1] + "`" for e in r["edits"]) or "–"
 
+    def steps(r):
+        """Steps compared (of the steps run, where they differ)."""
+        run = r.get("steps_run", r["steps"])
+        shown = "?" if r["steps"] is None else str(r["steps"])
+        return shown if run == r["steps"] else f"{shown} of {run}"
+
     def g(x):
         return "–" if x is None else f"{x:.2g}"
 
     order = {"chute1": 0, "chute20": 1, "layer2d": 2, "drum50": 3}
     for r in sorted(runs, key=lambda r: (
-            order.get(r["state"], 9), r["edits"], r["dt"] or 0, r["steps"],
+            order.get(r["state"], 9), r["edits"], r["dt"] or 0,
+            r.get("steps_run", r["steps"]) or 0,
             r["coupling"].split("-")[0],
             int(r["coupling"].split("-")[-1]) if "-" in r["coupling"]
             else 0)):
         if r["status"] != "ok":
-            cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
+            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
                      r["coupling"], r["status"], "", "", "", "", "", ""]
         else:
-            cells = [r["state"], edits(r), g(r["dt"]), r["steps"],
+            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
                      r["coupling"], g(r["l2_u_grains"]), g(r["l2_u_air"]),
                      g(r["l2_p_base"]),
                      f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
