@@ -782,13 +782,7 @@ Foam::granularMixture::granularMixture
     G_(),
     segregationRate_(mesh_.nCells(), Zero),
     gBody_(Zero),
-    tensionWarning_
-    (
-        granularInput::readNonNegativeOrDefault
-        (
-            *this, "tensionWarning", dimPressure, 1
-        )
-    )
+    tensionWarning_(readTensionWarning())
 {
     readAir();
 
@@ -1069,6 +1063,15 @@ Foam::tmp<Foam::scalarField> Foam::granularMixture::rheologyPressure
         p.primitiveField()
       - rhoAir_.value()*(gHydrostatic().value() & mesh_.C().primitiveField())
       - airPressureLevel(p);
+}
+
+
+Foam::dimensionedScalar Foam::granularMixture::readTensionWarning() const
+{
+    return granularInput::readNonNegativeOrDefault
+    (
+        *this, "tensionWarning", dimPressure, 1
+    );
 }
 
 
@@ -1418,10 +1421,7 @@ bool Foam::granularMixture::read()
                 << " start it again" << nl
                 << exit(FatalIOError);
         }
-        tensionWarning_ = granularInput::readNonNegativeOrDefault
-        (
-            *this, "tensionWarning", dimPressure, 1
-        );
+        tensionWarning_ = readTensionWarning();
         rheology_.read(*this);
         segregation_.read(*this, "segregation", rheology_);
         diffusion_.read(*this, "diffusion", rheology_);
