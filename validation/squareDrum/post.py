@@ -33,6 +33,7 @@ from scipy.signal import find_peaks  # noqa: E402
 
 from cases import foam  # noqa: E402
 from chute.post import _read_text, read_field, time_names  # noqa: E402
+from squareDrum.tension import step_table  # noqa: E402
 
 DPI = 150
 PERIOD = 10.0                   # s, one revolution at Omega = -pi/5
@@ -270,8 +271,7 @@ def summary(case):
     # The lowest pressure in the grains (phi^a < 1/2) at the written times
     # of the last revolution: p is levelled on the air, so this is the
     # pressure seen by the rheology to within rho^a g.x (1.4 Pa)
-    lowest = [float(read_field(case, n, "p")[
-        read_field(case, n, "alpha.air") < 0.5].min()) for n in names]
+    lowest = [row[1] for row in step_table(case, names)]
     out["lowest_p_grains_last_revolution"] = min(lowest)
     out["written_times_with_negative_p_grains"] = int(
         sum(1 for x in lowest if x < 0))
