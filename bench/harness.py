@@ -16,7 +16,7 @@ time) run from the same state over the same steps:
 
     bench/harness states [--states chute1 layer2d ...]
     bench/harness run [--states ...] [--dt 1e-3 4e-3] [--steps 1 10]
-                      [--couplings PISO-4 PISO-10 SIMPLEC-1 ...]
+                      [--couplings PISO-4 PISO-10 SIMPLEC-1 Krylov-BFBt-10 ...]
                       [--edit DICT:ENTRY=VALUE ...] [--label NAME]
 
 `states` writes the states into bench/work/harness/states (git-ignored);
@@ -226,13 +226,28 @@ def latest_time(case):
 # --------------------------------------------------------------------------
 
 def coupling_settings(name):
-    """fvSolution entries of a coupling named like PISO-10 or SIMPLEC-1."""
+    """fvSolution entries of a coupling named like PISO-10, SIMPLEC-1 or
+    Krylov-BFBt-10 (preconditioner BFBt or PISO, at most 10 iterations;
+    a suffix -tol1e-4 sets the tolerance, -inner1e-3 innerRelTol)."""
     if name == "reference":
         return dict(REFERENCE)
+    m = re.fullmatch(r"Krylov-(BFBt|PISO)-(\d+)(?:-tol([0-9.e-]+))?"
+                     r"(?:-inner([0-9.e-]+))?", name)
+    if m and int(m.group(2)) >= 1:
+        settings = {"PIMPLE.pressureCoupling": "Krylov",
+                    "PIMPLE.Krylov": "{}",
+                    "PIMPLE.Krylov.preconditioner": m.group(1),
+                    "PIMPLE.Krylov.maxIter": int(m.group(2))}
+        if m.group(3):
+            settings["PIMPLE.Krylov.tolerance"] = m.group(3)
+        if m.group(4):
+            settings["PIMPLE.Krylov.innerRelTol"] = m.group(4)
+        return settings
     m = re.fullmatch(r"(PISO|SIMPLEC)-(\d+)", name)
     if not m or int(m.group(2)) < 1:
-        raise ValueError(f"coupling '{name}' is not PISO-N or SIMPLEC-N "
-                         "(N >= 1) or reference")
+        raise ValueError(f"coupling '{name}' is not PISO-N, SIMPLEC-N "
+                         "(N >= 1), Krylov-BFBt-N, Krylov-PISO-N or "
+                         "reference")
     return {"PIMPLE.pressureCoupling": m.group(1),
             "PIMPLE.nCorrectors": int(m.group(2))}
 

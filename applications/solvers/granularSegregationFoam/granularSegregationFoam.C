@@ -38,6 +38,7 @@ Description
 #include "dynamicFvMesh.H"
 #include "granularMixture.H"
 #include "granularCoupling.H"
+#include "granularKrylovCoupling.H"
 #include "faceReconstruction.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
@@ -74,6 +75,7 @@ int main(int argc, char *argv[])
     #include "createUfIfPresent.H"
 
     granularCoupling coupling(pimple);
+    granularKrylovCoupling krylovCoupling(pimple);
 
     // fvc::reconstruct with the geometry cached (the correctors call it)
     faceReconstruction reconstruct(mesh);
@@ -124,6 +126,7 @@ int main(int argc, char *argv[])
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
         coupling.read();
+        krylovCoupling.read();
         coupling.newTimeStep();
 
         // --- Pressure-velocity PIMPLE corrector loop
@@ -173,6 +176,14 @@ int main(int argc, char *argv[])
             rho = mixture.rho();
             endProfiling(transport);
 
+            // The face forces of (4.1) besides the pressure gradient:
+            // surface tension and buoyancy
+            const surfaceScalarField faceForce
+            (
+                "faceForce",
+                mixture.surfaceTensionForce() - ghf*fvc::snGrad(rho)
+            );
+
             addProfiling(momentum, "granular::UEqn");
             #include "UEqn.H"
             endProfiling(momentum);
@@ -180,11 +191,31 @@ int main(int argc, char *argv[])
             {
                 #include "pCoefficients.H"
 
+                if (coupling.Krylov())
+                {
+                    addProfiling(krylov, "granular::Krylov");
+                    krylovCoupling.solve
+                    (
+                        {
+                            UEqn, rho, rAU(), rAUf, faceForce, phig,
+                            phiDdtCorr, reconstruct, MRF, pRefCell
+                        },
+                        U,
+                        p_rgh
+                    );
+                    coupling.addSolutions(krylovCoupling.nPressureSolutions());
+                }
+
                 // --- Pressure corrector loop
                 while (coupling.correct())
                 {
                     addProfiling(corrector, "granular::pEqn");
                     #include "pEqn.H"
+                }
+
+                if (coupling.Krylov())
+                {
+                    krylovCoupling.restorePressure(p_rgh, p, rho, gh);
                 }
             }
 

@@ -10,6 +10,7 @@
 #include "fvc.H"
 #include "extrapolatedCalculatedFvPatchFields.H"
 #include "granularInput.H"
+#include "adjustPhi.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
@@ -18,6 +19,7 @@ Foam::granularCoupling::pressureCouplingNames
 ({
     { pressureCoupling::PISO, "PISO" },
     { pressureCoupling::SIMPLEC, "SIMPLEC" },
+    { pressureCoupling::Krylov, "Krylov" },
 });
 
 
@@ -199,6 +201,32 @@ Foam::tmp<Foam::volScalarField> Foam::granularCoupling::pressureCoefficient
 }
 
 
+Foam::tmp<Foam::surfaceScalarField> Foam::granularCoupling::fluxHbyA
+(
+    const volVectorField& HbyA,
+    const surfaceScalarField& phiDdtCorr,
+    const volVectorField& U,
+    volScalarField& p_rgh,
+    const IOMRFZoneList& MRF
+)
+{
+    tmp<surfaceScalarField> tphiHbyA
+    (
+        new surfaceScalarField("phiHbyA", fvc::flux(HbyA) + phiDdtCorr)
+    );
+    surfaceScalarField& phiHbyA = tphiHbyA.ref();
+    MRF.makeRelative(phiHbyA);
+
+    if (p_rgh.needReference())
+    {
+        fvc::makeRelative(phiHbyA, U);
+        adjustPhi(phiHbyA, U, p_rgh);
+        fvc::makeAbsolute(phiHbyA, U);
+    }
+    return tphiHbyA;
+}
+
+
 void Foam::granularCoupling::newTimeStep()
 {
     nSolutions_ = 0;
@@ -219,7 +247,7 @@ bool Foam::granularCoupling::correct()
     }
 
     ++corr_;
-    final_ = nextFinal_ || corr_ >= pimple_.nCorrPISO();
+    final_ = nextFinal_ || Krylov() || corr_ >= pimple_.nCorrPISO();
     return true;
 }
 
