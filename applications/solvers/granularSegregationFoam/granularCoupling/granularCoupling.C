@@ -11,6 +11,7 @@
 #include "extrapolatedCalculatedFvPatchFields.H"
 #include "granularInput.H"
 #include "adjustPhi.H"
+#include "granularMixture.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
@@ -47,15 +48,40 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     residual_(0)
 {
     read();
-    Info<< "Pressure coupling: " << pressureCouplingNames[coupling_]
-        << ", at most " << pimple_.nCorrPISO() << " correctors";
-    if (tolerance_ > 0)
+    Info<< "Pressure coupling: " << pressureCouplingNames[coupling_];
+    if (Krylov())
+    {
+        Info<< " (FGMRES on U and p_rgh), then one PISO corrector";
+    }
+    else
+    {
+        Info<< ", at most " << pimple_.nCorrPISO() << " correctors";
+    }
+    if (tolerance_ > 0 && !Krylov())
     {
         Info<< ", ended once the initial residual of p_rgh is below "
             << tolerance_;
     }
     Info<< "; transpose stress " << transposeStressNames[transpose_]
         << nl << endl;
+
+    // Too few PISO correctors for the implicit stress (class description)
+    const bool implicitStress =
+        granularMixture::viscousStressNames.getOrDefault
+        (
+            "viscousStress",
+            pimple_.dict(),
+            granularMixture::viscousStress::explicitStress
+        )
+     == granularMixture::viscousStress::implicitStress;
+    if (implicitStress && !Krylov() && pimple_.nCorrPISO() < 4)
+    {
+        WarningInFunction
+            << "viscousStress implicit with nCorrectors "
+            << pimple_.nCorrPISO() << " in " << pimple_.dict().name()
+            << ": the pressure may not converge within a step at large"
+            << " Delta t; the chute tutorial uses nCorrectors 10" << endl;
+    }
 
     if (pimple_.nCorrPIMPLE() > 1)
     {

@@ -469,7 +469,17 @@ Foam::granularKrylovCoupling::granularKrylovCoupling
 
 void Foam::granularKrylovCoupling::read()
 {
-    const dictionary dict(pimple_.dict().subOrEmptyDict("Krylov"));
+    // The Krylov dictionary is optional; present, it must be a dictionary
+    const dictionary& pimpleDict = pimple_.dict();
+    const dictionary dict
+    (
+        pimpleDict.found("Krylov", keyType::LITERAL)
+      ? granularInput::subDict
+        (
+            pimpleDict, "Krylov", "the settings of pressureCoupling Krylov"
+        )
+      : pimpleDict.subOrEmptyDict("Krylov")
+    );
 
     preconditioner_ = preconditionerNames.getOrDefault
     (

@@ -1002,15 +1002,6 @@ Foam::granularMixture::readViscousStress(const pimpleControl& pimple)
             << exit(FatalIOError);
     }
 
-    // Too few PISO correctors: see the class description (Usage)
-    if (v == viscousStress::implicitStress && pimple.nCorrPISO() < 4)
-    {
-        WarningInFunction
-            << "viscousStress implicit with nCorrectors " << pimple.nCorrPISO()
-            << " in " << dict.name() << ": the pressure may not"
-            << " converge within a step at large Delta t; the chute"
-            << " tutorial uses nCorrectors 20" << endl;
-    }
     Info<< "Viscous stress: " << viscousStressNames[v]
         << (v == viscousStress::implicitStress
             ? " (the viscous part of (4.11) does not limit Delta t)"
