@@ -279,10 +279,14 @@ def run_steps(state, dt, steps, coupling, edits):
     for entry, value in (("startFrom", "latestTime"),
                          ("adjustTimeStep", "no"), ("deltaT", repr(dt)),
                          ("endTime", repr(end)),
-                         ("writeControl", "timeStep"),
-                         # every step: a restart keeps its time index, so
-                         # an interval of `steps` need not end on the last
-                         ("writeInterval", 1), ("writePrecision", 17),
+                         # once, at the end: runTime counts from the start
+                         # time (a restart keeps its time index, so an
+                         # interval of `steps` time steps need not end on
+                         # the last); writing every step cost more than a
+                         # step
+                         ("writeControl", "runTime"),
+                         ("writeInterval", repr(end - float(t0))),
+                         ("writePrecision", 17),
                          ("timePrecision", 10), ("functions", "{}")):
         set_entry(case, "system/controlDict", entry, value)
     for entry, value in coupling_settings(coupling).items():

@@ -13,6 +13,7 @@
 #include "constrainPressure.H"
 #include "SquareMatrix.H"
 #include "granularInput.H"
+#include "profiling.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
@@ -312,6 +313,7 @@ class coupledStep
             );
         }
         ++nPressureSolutions_;
+        addProfiling(laplacian, "granular::Krylov::laplacianSolve");
         return L_->solve(r, nInnerIter_);
     }
 
@@ -375,6 +377,7 @@ public:
     //  divergence of the corrector's flux
     coupledVector residual(const coupledVector& x)
     {
+        addProfiling(residual, "granular::Krylov::residual");
         U_.primitiveFieldRef() = x.u;
         U_.correctBoundaryConditions();
         p_.primitiveFieldRef() = x.p;
@@ -427,6 +430,7 @@ public:
         }
 
         // The velocity from the momentum matrix with that pressure
+        addProfiling(momentum, "granular::Krylov::momentumSolve");
         z.u = A_.solve(ru - gradient(z.p), nInnerIter_);
 
         return z;
