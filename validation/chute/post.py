@@ -354,6 +354,63 @@ def downstream_phibar(h=T3.h, zeta=ZETA, phi0=PHI0):
         phi0, lambda zh: bagnold.velocity(zh * h, h, zeta), pe)
 
 
+def outflow(case, set_name="outlet", h=T3.h):
+    """The steady outflow: the column sampled at the last time against
+    Bagnold (5.4), Gray & Chugunov (5.8) and (5.10), and its change since
+    the time sampled before.  Returns (numbers, arrays): numbers for the
+    results files, arrays (z, u, phis, Pe, phibar) for figure 4."""
+    from scipy.optimize import brentq
+    sampled = time_names(case)
+    t_prev, t_end = sampled[-2], sampled[-1]
+    prof = profiles(case, t_end, function="profiles", set_name=set_name)
+    z = prof["z"]
+    dz = z[1] - z[0]
+    inside = z + 0.5 * dz <= h          # cells wholly below the inflow depth
+    grains = prof["alpha.small"] + prof["alpha.large"]
+
+    u = prof["U"][:, 0]
+    u_exact = bagnold.velocity(z[inside], h, ZETA)
+    l2_u = errors.l2_relative(u[inside], u_exact)
+
+    phis = small_fraction(prof["alpha.small"], prof["alpha.large"])
+    Pe = grayChugunov.peclet(T3.f_sl, h, T3.D_sl, ZETA)
+    phibar = downstream_phibar(h)
+    phis_exact = grayChugunov.phi_s(z[inside] / h, Pe, phibar)
+    l2_phis = errors.l2_relative(phis[inside], phis_exact)
+
+    # Height of phi^s = 1/2 (the transition), computed and (5.8)
+    assert phis[0] > 0.5 and np.any(phis < 0.5), f"no phi^s = 1/2: {phis}"
+    z_half = float(free_surface(z, (1.0 - phis)[:, None])[0])
+    z_half_exact = float(brentq(
+        lambda zz: grayChugunov.phi_s(zz / h, Pe, phibar) - 0.5, 0.0, h))
+
+    # (5.10): depth average of phi^s over the grains, phi^s weighted by the
+    # grain fraction so the interface cell counts once
+    depth = float(np.sum(grains) * dz)
+    phibar_computed = float(np.sum(prof["alpha.small"]) * dz / depth)
+
+    prev = profiles(case, t_prev, function="profiles", set_name=set_name)
+    change_u = float(np.abs(prev["U"][:, 0] - u).max() / u_exact.max())
+    change_phis = float(np.abs(
+        small_fraction(prev["alpha.small"], prev["alpha.large"])
+        - phis)[grains > 0.5].max())
+
+    numbers = {
+        "end_time": float(t_end),
+        "outlet_l2_u_bagnold": l2_u,
+        "outlet_l2_phis_gray_chugunov": l2_phis,
+        "outlet_phis_half_height": z_half,
+        "exact_phis_half_height": z_half_exact,
+        "outlet_depth_averaged_phis": phibar_computed,
+        "theory_depth_averaged_phis": phibar,
+        "outlet_grain_depth": depth, "Pe": Pe,
+        "outlet_change_last_interval_u": change_u,
+        "outlet_change_last_interval_phis": change_phis,
+        "dz": dz,
+    }
+    return numbers, (z, u, phis, Pe, phibar)
+
+
 def history(case, names=None, behind=0.1):
     """Front and air measures of the written times (names, default all
     t > 0): {'t', 'front' (free surface above one cell), 'foot'
