@@ -18,6 +18,12 @@ time) run from the same state over the same steps:
     bench/harness run [--states ...] [--dt 1e-3 4e-3] [--steps 1 10]
                       [--couplings PISO-4 PISO-10 SIMPLEC-1 Krylov-BFBt-10 ...]
                       [--edit DICT:ENTRY=VALUE ...] [--label NAME]
+    bench/harness chute [--couplings ...] [--end-time 25] [--sub-cycles M]
+                        [--max-delta-t DT] [--edit DICT:ENTRY=VALUE ...]
+
+`chute` runs the whole chute tutorial from rest with each coupling and
+records its cost and its outflow against the exact solutions under
+"whole_chute".
 
 `states` writes the states into bench/work/harness/states (git-ignored);
 `run` appends its measurements to bench/coupling.json under "harness"
@@ -45,7 +51,7 @@ sys.path.insert(0, str(ROOT / "validation"))
 
 import numpy as np  # noqa: E402
 
-from cases import foam, set_entry  # noqa: E402
+from cases import edit, foam, set_entry  # noqa: E402
 from chute.post import cell_centres, read_field, time_names  # noqa: E402
 
 WORK = ROOT / "bench" / "work" / "harness"
@@ -434,6 +440,88 @@ def store(entries, command):
     RESULTS.write_text(json.dumps(data, indent=1) + "\n")
 
 
+def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
+    """The chute tutorial from rest to end_time, serial, with the coupling
+    (and, if given, maxAlphaSubCycles and maxDeltaT, then the edits); the
+    steady outflow against the exact solutions (validation/chute/post.py)
+    and the cost."""
+    from chute.post import outflow
+    tag = "_".join(filter(None, [
+        coupling, f"sub{sub_cycles}" if sub_cycles else "",
+        f"dt{max_delta_t:g}" if max_delta_t else "",
+        _tag(edits) if edits else ""]))
+    case = WORK / "chute" / tag
+    if case.exists():
+        shutil.rmtree(case)
+    case.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copytree(ROOT / "tutorials" / "chute", case,
+                    ignore=shutil.ignore_patterns("[1-9]*", "log.*",
+                                                  "postProcessing"))
+    set_entry(case, "system/chuteParameters", "endTime", end_time)
+    for entry, value in coupling_settings(coupling).items():
+        set_entry(case, "system/fvSolution", entry, value)
+    if sub_cycles:
+        # the phases' solver entry has a regular-expression name, which
+        # foamDictionary cannot scope
+        edit(case / "system" / "fvSolution",
+             [(r"nAlphaSubCycles\s+\d+;", f"maxAlphaSubCycles {sub_cycles};")])
+    if max_delta_t:
+        set_entry(case, "system/controlDict", "maxDeltaT", max_delta_t)
+    for dictionary, entry, value in map(parse_edit, edits):
+        set_entry(case, dictionary, entry, value)
+    shutil.copytree(case / "0.orig", case / "0")
+    foam(case, "blockMesh")
+    print(f"harness: chute {tag}: running to t = {end_time} s", flush=True)
+    how, text = run_solver(case, 12 * 3600)
+    steps = len(re.findall(r"^Time = ", text, re.M))
+    cpu = re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", text, re.M)
+    solutions = [int(n) for n in re.findall(
+        r"Pressure coupling: (\d+) pressure solutions", text)]
+    entry = {"coupling": coupling, "end_time": float(end_time),
+             "max_alpha_sub_cycles": sub_cycles,
+             "max_delta_t": max_delta_t, "edits": list(edits),
+             "steps": steps,
+             "cpu_seconds": float(cpu[-1]) if cpu else None,
+             "pressure_solutions_per_step":
+                 (sum(solutions) / len(solutions)) if solutions else None}
+    if how != "ok":
+        times = re.findall(r"^Time = (\S+)", text, re.M)
+        entry["status"] = (f"failed ({how}) at t = "
+                           f"{times[-1] if times else 0} s")
+        return entry
+    try:
+        numbers, _ = outflow(case)
+    except AssertionError as err:
+        entry["status"] = f"ran; no outflow to measure: {err}"
+        return entry
+    numbers.pop("dz")
+    entry.update(status="ok", **{k: float(f"{v:.6g}")
+                                 for k, v in numbers.items()})
+    return entry
+
+
+def store_whole(entries, command):
+    data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
+    whole = data.setdefault("whole_chute", {})
+    whole["description"] = (
+        "The chute tutorial (155 x 40) from rest to end_time, serial, with "
+        "a coupling (bench/harness chute): steps, CPU seconds, pressure "
+        "solutions per step, and the outflow at the end against Bagnold "
+        "(5.4), Gray & Chugunov (5.8) and (5.10) with its change over the "
+        "last written second (validation/chute/post.py outflow).")
+    runs = whole.setdefault("runs", [])
+
+    def key(e):
+        return (e["coupling"], e["end_time"], e["max_alpha_sub_cycles"],
+                e["max_delta_t"], tuple(e["edits"]))
+    new = {key(e) for e in entries}
+    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
+             "command": command}
+    runs[:] = [e for e in runs if key(e) not in new] + [
+        dict(e, **stamp) for e in entries]
+    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="bench/harness",
                                      description=__doc__.split("\n\n")[0])
@@ -455,6 +543,17 @@ def main(argv=None):
                     metavar="DICT:ENTRY=VALUE")
     pr.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
+    pc = sub.add_parser("chute", help="whole chute runs, one a coupling")
+    pc.add_argument("--couplings", nargs="+", default=["PISO-10"])
+    pc.add_argument("--end-time", type=float, default=25)
+    pc.add_argument("--sub-cycles", type=int, default=None,
+                    help="maxAlphaSubCycles (in the place of "
+                    "nAlphaSubCycles)")
+    pc.add_argument("--max-delta-t", type=float, default=None)
+    pc.add_argument("--edit", nargs="+", default=[],
+                    metavar="DICT:ENTRY=VALUE")
+    pc.add_argument("--no-store", action="store_true",
+                    help="print, do not write bench/coupling.json")
     args = parser.parse_args(argv)
     try:
         for e in args.edit:
@@ -463,6 +562,19 @@ def main(argv=None):
         parser.error(str(err))
     command = "bench/harness " + " ".join(argv if argv is not None
                                           else sys.argv[1:])
+    if args.what == "chute":
+        try:
+            for c in args.couplings:
+                coupling_settings(c)
+        except ValueError as err:
+            parser.error(str(err))
+        for coupling in args.couplings:
+            e = whole_chute(coupling, args.end_time, args.sub_cycles,
+                            args.max_delta_t, args.edit)
+            print(json.dumps(e), flush=True)
+            if not args.no_store:
+                store_whole([e], command)
+        return 0
     if args.what == "states":
         failed = [e for e in (make_state(name, args.edit)
                               for name in args.states) if e]

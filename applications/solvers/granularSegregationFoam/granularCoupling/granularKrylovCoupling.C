@@ -458,8 +458,8 @@ Foam::granularKrylovCoupling::granularKrylovCoupling
 :
     pimple_(pimple),
     preconditioner_(preconditioner::BFBt),
-    tolerance_(1e-3),
-    maxIter_(10),
+    tolerance_(1e-2),
+    maxIter_(20),
     innerRelTol_(0.01),
     nIter_(0),
     relResidual_(0),
@@ -490,13 +490,13 @@ void Foam::granularKrylovCoupling::read()
         "preconditioner", dict, preconditioner::BFBt
     );
 
-    tolerance_ = dict.getOrDefault<scalar>("tolerance", 1e-3);
+    tolerance_ = dict.getOrDefault<scalar>("tolerance", 1e-2);
     if (!(tolerance_ > 0 && tolerance_ < 1))
     {
         granularInput::invalid(dict, "tolerance", tolerance_, "0 < tolerance < 1");
     }
 
-    maxIter_ = dict.getOrDefault<label>("maxIter", 10);
+    maxIter_ = dict.getOrDefault<label>("maxIter", 20);
     if (maxIter_ < 1)
     {
         granularInput::invalid(dict, "maxIter", maxIter_, ">= 1");
@@ -526,6 +526,15 @@ void Foam::granularKrylovCoupling::solve
     const coupledVector r0(cs.residual(x0));
     const scalar beta = Foam::sqrt(cs.dot(r0, r0));
 
+    // The iterations end once the residual, in m/s, is below tolerance
+    // times the RMS speed (or times the initial residual in a fluid at
+    // rest): relative to the initial residual instead, the air's
+    // continuity residual after the phases moved, which the first
+    // iteration removes, would set the target
+    const coupledVector u0(x0.u, scalarField(x0.p.size(), Zero));
+    const scalar speed = Foam::sqrt(cs.dot(u0, u0));
+    const scalar target = tolerance_*(speed > 0 ? speed : beta);
+
     // FGMRES with right preconditioning, Givens rotations and modified
     // Gram-Schmidt (Saad 1993)
     PtrList<coupledVector> V(maxIter_ + 1);
@@ -543,7 +552,7 @@ void Foam::granularKrylovCoupling::solve
         V.set(0, new coupledVector(r0.u/beta, r0.p/beta));
         g[0] = beta;
 
-        while (k < maxIter_ && res > tolerance_*beta)
+        while (k < maxIter_ && res > target)
         {
             Z.set(k, new coupledVector(cs.precondition(V[k])));
 
@@ -623,13 +632,14 @@ void Foam::granularKrylovCoupling::solve
     p_rgh_.reset(new volScalarField("p_rghKrylov", p_rgh));
 
     nIter_ = k;
-    relResidual_ = beta > 0 ? res/beta : 0;
+    relResidual_ = res/(speed > 0 ? speed : max(beta, VSMALL));
     nPressureSolutions_ = cs.nPressureSolutions();
 
     Info<< "Krylov coupling: " << preconditionerNames[preconditioner_]
-        << ", " << nIter_ << " iterations, residual " << beta << " m/s, "
-        << "reduced by " << relResidual_;
-    if (relResidual_ > tolerance_)
+        << ", " << nIter_ << " iterations, residual " << beta << " -> "
+        << res << " m/s, " << relResidual_ << " of the "
+        << (speed > 0 ? "RMS speed" : "initial residual");
+    if (res > target)
     {
         Info<< ": not converged to tolerance " << tolerance_
             << " within maxIter " << maxIter_;
