@@ -7,6 +7,7 @@ bench/results.json and bench/tutorials.json (after editing either, say):
 """
 
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -177,6 +178,63 @@ def tutorials_section():
     return lines
 
 
+def coupling_order(name):
+    """Sort key of a coupling name: its family, preconditioner, count and
+    the rest (PISO-10, Krylov-BFBt-20-tol1e-3)."""
+    m = re.match(r"([A-Za-z]+)-(?:([A-Za-z]+)-)?(\d+)(.*)", name)
+    if not m:
+        return (name, "", 0, "")
+    return (m.group(1), m.group(2) or "", int(m.group(3)), m.group(4))
+
+
+def whole_chute_section():
+    """Whole chute runs with a coupling (bench/harness chute)."""
+    path = BENCH / "coupling.json"
+    runs = (json.loads(path.read_text()).get("whole_chute", {})
+            .get("runs", []) if path.exists() else [])
+    if not runs:
+        return []
+    lines = [
+        "## Whole chute runs by coupling",
+        "",
+        "`bench/harness chute` (see `bench/README.md`): the chute tutorial "
+        "(155 × 40) from rest, serial, once per coupling; the outflow at the "
+        "end against Bagnold (5.4), Gray & Chugunov (5.8) and the "
+        "depth-averaged φ^s of (5.10) (0.6744), and its change over the "
+        "last written second. Numbers in `bench/coupling.json` "
+        "(`whole_chute`).",
+        "",
+        "| coupling | maxAlphaSubCycles | maxDeltaT [s] | end [s] | steps | "
+        "CPU [s] | pressure solutions / step | u vs (5.4) | φ^s vs (5.8) | "
+        "φ̄^s | u change, last second | status |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+
+    def g(x, fmt="{:.3g}"):
+        return "–" if x is None else fmt.format(x)
+
+    for r in sorted(runs, key=lambda r: (r["end_time"],
+                                         *coupling_order(r["coupling"]))):
+        ok = r["status"] == "ok"
+        cells = [r["coupling"] + (" " + ", ".join(
+                     "`" + e.split(":", 1)[-1] + "`" for e in r["edits"])
+                     if r["edits"] else ""),
+                 g(r["max_alpha_sub_cycles"], "{}"),
+                 g(r["max_delta_t"]), g(r["end_time"]), g(r["steps"], "{}"),
+                 g(r["cpu_seconds"], "{:.0f}"),
+                 g(r["pressure_solutions_per_step"], "{:.1f}"),
+                 g(r.get("outlet_l2_u_bagnold"), "{:.3%}") if ok else "",
+                 g(r.get("outlet_l2_phis_gray_chugunov"), "{:.3%}")
+                 if ok else "",
+                 g(r.get("outlet_depth_averaged_phis"), "{:.4f}")
+                 if ok else "",
+                 g(r.get("outlet_change_last_interval_u"), "{:.2g}")
+                 if ok else "",
+                 r["status"]]
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    return lines
+
+
 def harness_section():
     """The coupling harness's measurements (bench/coupling.json, written
     by bench/harness): every coupling against 200 correctors from the same
@@ -222,9 +280,7 @@ def harness_section():
     for r in sorted(runs, key=lambda r: (
             order.get(r["state"], 9), r["edits"], r["dt"] or 0,
             r.get("steps_run", r["steps"]) or 0,
-            r["coupling"].split("-")[0],
-            int(r["coupling"].split("-")[-1]) if "-" in r["coupling"]
-            else 0)):
+            *coupling_order(r["coupling"]))):
         if r["status"] != "ok":
             cells = [r["state"], edits(r), g(r["dt"]), steps(r),
                      r["coupling"], r["status"], "", "", "", "", "", ""]
@@ -336,7 +392,8 @@ def write(results, path):
     section = adaptive_section(results)
     if section:
         lines += ["", *section]
-    for section in (harness_section(), tutorials_section()):
+    for section in (harness_section(), whole_chute_section(),
+                    tutorials_section()):
         if section:
             lines += ["", *section]
     notes = warnings(results)
