@@ -224,19 +224,11 @@ int main(int argc, char *argv[])
                 rAU.clear();
             }
 
-            // Closed domains: the reference cell turns with a rotating
-            // mesh and may end in the grains, so p is levelled on the air
-            // instead, p - rho^a g.x = pRefValue on average over the air
+            // Closed domains: p levelled on the air (p - rho^a g.x =
+            // pRefValue on average over it)
             if (p_rgh.needReference())
             {
-                const dimensionedScalar shift
-                (
-                    "shift",
-                    p.dimensions(),
-                    pRefValue - mixture.airPressureLevel(p)
-                );
-                p += shift;
-                p_rgh += shift;
+                mixture.levelPressure(p, p_rgh, pRefValue);
             }
         }
 

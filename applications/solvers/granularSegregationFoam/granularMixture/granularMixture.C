@@ -1040,6 +1040,24 @@ Foam::scalar Foam::granularMixture::airPressureLevel
 }
 
 
+void Foam::granularMixture::levelPressure
+(
+    volScalarField& p,
+    volScalarField& p_rgh,
+    const scalar pRefValue
+) const
+{
+    const dimensionedScalar shift
+    (
+        "shift",
+        p.dimensions(),
+        pRefValue - airPressureLevel(p)
+    );
+    p += shift;
+    p_rgh += shift;
+}
+
+
 Foam::tmp<Foam::scalarField> Foam::granularMixture::rheologyPressure
 (
     const volScalarField& p,
