@@ -20,6 +20,7 @@ time) run from the same state over the same steps:
                       [--edit DICT:ENTRY=VALUE ...] [--label NAME]
     bench/harness chute [--couplings ...] [--end-time 25] [--sub-cycles M]
                         [--max-delta-t DT] [--edit DICT:ENTRY=VALUE ...]
+    bench/harness spectrum [--states ...] [--dt 4e-3] [--preconditioners ...]
 
 `chute` runs the whole chute tutorial from rest with each coupling and
 records its cost and its outflow against the exact solutions under
@@ -159,16 +160,25 @@ def _drum(end_time, n=50):
     return make
 
 
+def _layer2d_square(case):
+    """The periodic layer on square cells: 41 columns of 0.1 mm x 0.1 mm
+    over 4.1 mm, the same sine surface; to tell the cells' aspect ratio
+    from the rest."""
+    return _layer2d(case, columns=41, length=0.0041)
+
+
 STATES = {
     "chute1": _chute(1),
     "chute20": _chute(20),
     "layer2d": _layer2d,
+    "layer2dSquare": _layer2d_square,
     "drum50": _drum(8.75),
 }
 
 # The direction normal to the base (the layers and the chute: z); none for
 # the drum, whose walls turn: no base row, outlet or normal velocity there
-NORMAL = {"chute1": 2, "chute20": 2, "layer2d": 2, "drum50": None}
+NORMAL = {"chute1": 2, "chute20": 2, "layer2d": 2, "layer2dSquare": 2,
+          "drum50": None}
 
 
 def _tag(edits):
@@ -270,9 +280,10 @@ def run_name(state, dt, steps, coupling, edits):
             + (f"_{_tag(edits)}" if edits else ""))
 
 
-def run_steps(state, dt, steps, coupling, edits):
-    """Run `steps` steps of dt from the state with the coupling and edits;
-    return (case, status, pressure solutions per step, CPU ms per step)."""
+def run_steps(state, dt, steps, coupling, edits, debug=False):
+    """Run `steps` steps of dt from the state with the coupling and edits
+    (debug: the Krylov coupling's debug switch on); return (case, status,
+    pressure solutions per step, CPU ms per step)."""
     source = state_dir(state, edits)
     t0 = latest_time(source)
     case = WORK / "runs" / run_name(state, dt, steps, coupling, edits)
@@ -297,6 +308,9 @@ def run_steps(state, dt, steps, coupling, edits):
         set_entry(case, "system/controlDict", entry, value)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
+    if debug:
+        set_entry(case, "system/controlDict", "DebugSwitches",
+                  "{ granularKrylovCoupling 1; }")
     # The edits are in the state's files already
     how, text = run_solver(case, 3600)
     solutions = [int(n) for n in
@@ -403,6 +417,65 @@ def measure(state, dt, steps, coupling, edits, references):
         entry.update(compare(case, ref, state_dir(state, edits),
                              NORMAL[state]))
     return _rounded(entry)
+
+
+def spectrum(state, dt, preconditioner, edits):
+    """The Ritz values of the preconditioned operator in one step from the
+    state: the eigenvalues of the Hessenberg matrix of a Krylov solution
+    of up to 30 iterations (the granularKrylovCoupling debug switch logs
+    it). All near 1: the preconditioner is near the inverse; spread over
+    [a, b]: GMRES needs about sqrt(b/a) times more iterations."""
+    coupling = f"Krylov-{preconditioner}-30-tol1e-6"
+    case, status, sol, ms = run_steps(state, dt, 1, coupling, edits,
+                                      debug=True)
+    entry = {"state": state, "time": float(latest_time(state_dir(state,
+                                                                 edits))),
+             "dt": dt, "preconditioner": preconditioner,
+             "edits": list(edits), "status": status}
+    if status != "ok":
+        return entry
+    text = (case / f"log.{SOLVER}").read_text()
+    blocks = text.split("Krylov coupling: Hessenberg matrix")
+    assert len(blocks) > 1, f"{case}: no Hessenberg matrix in the log"
+    rows = []
+    for line in blocks[-1].splitlines()[1:]:
+        if not line.strip():
+            break
+        rows.append([float(x) for x in line.split()])
+    H = np.array(rows)
+    k = H.shape[1]
+    ritz = np.linalg.eigvals(H[:k, :k])
+    ritz = ritz[np.argsort(-np.abs(ritz))]
+    last = re.findall(r"^Krylov coupling: \S+, (\d+) iterations, residual "
+                      r"(\S+) -> (\S+) m/s", text, re.M)[-1]
+    entry.update(iterations=int(last[0]),
+                 relative_residual=float(f"{float(last[2]) / float(last[1]):.3g}"),
+                 ritz_largest=float(f"{abs(ritz[0]):.3g}"),
+                 ritz_smallest=float(f"{abs(ritz[-1]):.3g}"),
+                 ritz=[[float(f"{z.real:.3g}"), float(f"{z.imag:.3g}")]
+                       for z in ritz])
+    return entry
+
+
+def store_spectra(entries, command):
+    data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
+    spectra = data.setdefault("krylov_spectra", {})
+    spectra["description"] = (
+        "Ritz values (real, imaginary) of the Krylov coupling's "
+        "preconditioned operator in one step of dt from a state "
+        "(bench/harness spectrum): the eigenvalues of the Hessenberg matrix "
+        "of up to 30 FGMRES iterations. The nearer all are to 1, the better "
+        "the preconditioner; relative_residual is the reduction reached.")
+    runs = spectra.setdefault("runs", [])
+
+    def key(e):
+        return (e["state"], e["dt"], e["preconditioner"], tuple(e["edits"]))
+    new = {key(e) for e in entries}
+    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
+             "command": command}
+    runs[:] = [e for e in runs if key(e) not in new] + [
+        dict(e, **stamp) for e in entries]
+    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
 
 
 def machine():
@@ -554,6 +627,17 @@ def main(argv=None):
                     metavar="DICT:ENTRY=VALUE")
     pc.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
+    pk = sub.add_parser("spectrum", help="Ritz values of the Krylov "
+                        "coupling's preconditioned operator")
+    pk.add_argument("--states", nargs="+", choices=sorted(STATES),
+                    default=["chute1", "layer2d", "layer2dSquare"])
+    pk.add_argument("--dt", nargs="+", type=float, default=[4e-3])
+    pk.add_argument("--preconditioners", nargs="+", default=["BFBt", "PISO"],
+                    choices=["BFBt", "PISO"])
+    pk.add_argument("--edit", nargs="+", default=[],
+                    metavar="DICT:ENTRY=VALUE")
+    pk.add_argument("--no-store", action="store_true",
+                    help="print, do not write bench/coupling.json")
     args = parser.parse_args(argv)
     try:
         for e in args.edit:
@@ -562,6 +646,21 @@ def main(argv=None):
         parser.error(str(err))
     command = "bench/harness " + " ".join(argv if argv is not None
                                           else sys.argv[1:])
+    if args.what == "spectrum":
+        for state in args.states:
+            if not state_dir(state, args.edit).is_dir():
+                parser.error(f"no state {state_dir(state, args.edit).name}: "
+                             f"run bench/harness states --states {state} "
+                             "first")
+        for state in args.states:
+            for dt in args.dt:
+                for pc in args.preconditioners:
+                    e = spectrum(state, dt, pc, args.edit)
+                    print(json.dumps({k: v for k, v in e.items()
+                                      if k != "ritz"}), flush=True)
+                    if not args.no_store:
+                        store_spectra([e], command)
+        return 0
     if args.what == "chute":
         try:
             for c in args.couplings:

@@ -17,6 +17,12 @@
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
+namespace Foam
+{
+    defineTypeNameAndDebug(granularKrylovCoupling, 0);
+}
+
+
 const Foam::Enum<Foam::granularKrylovCoupling::preconditioner>
 Foam::granularKrylovCoupling::preconditionerNames
 ({
@@ -540,6 +546,8 @@ void Foam::granularKrylovCoupling::solve
     PtrList<coupledVector> V(maxIter_ + 1);
     PtrList<coupledVector> Z(maxIter_);
     SquareMatrix<scalar> H(maxIter_ + 1, Zero);
+    // The Hessenberg matrix before the rotations, for the debug log
+    SquareMatrix<scalar> H0(debug ? maxIter_ + 1 : 0, Zero);
     scalarList g(maxIter_ + 1, Zero);
     scalarList cs1(maxIter_, Zero);
     scalarList sn1(maxIter_, Zero);
@@ -574,6 +582,13 @@ void Foam::granularKrylovCoupling::solve
                 w.p -= H(i, k)*V[i].p;
             }
             H(k + 1, k) = Foam::sqrt(cs.dot(w, w));
+            if (debug)
+            {
+                for (label i = 0; i <= k + 1; ++i)
+                {
+                    H0(i, k) = H(i, k);
+                }
+            }
             V.set
             (
                 k + 1,
@@ -628,6 +643,22 @@ void Foam::granularKrylovCoupling::solve
     p_rgh.primitiveFieldRef() = p;
     p_rgh.correctBoundaryConditions();
 
+
+    if (debug && k > 0)
+    {
+        Info<< "Krylov coupling: Hessenberg matrix (" << k + 1 << " x "
+            << k << ", rows)" << nl;
+        for (label i = 0; i <= k; ++i)
+        {
+            Info<< "   ";
+            for (label j = 0; j < k; ++j)
+            {
+                Info<< ' ' << H0(i, j);
+            }
+            Info<< nl;
+        }
+        Info<< endl;
+    }
 
     p_rgh_.reset(new volScalarField("p_rghKrylov", p_rgh));
 
