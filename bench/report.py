@@ -235,6 +235,45 @@ def whole_chute_section():
     return lines
 
 
+def spectra_section():
+    """Ritz values of the Krylov coupling (bench/harness spectrum)."""
+    path = BENCH / "coupling.json"
+    runs = (json.loads(path.read_text()).get("krylov_spectra", {})
+            .get("runs", []) if path.exists() else [])
+    if not runs:
+        return []
+    lines = [
+        "## Spectrum of the preconditioned Krylov coupling",
+        "",
+        "`bench/harness spectrum` (see `bench/README.md`): one step of Δt "
+        "from a state with up to 30 FGMRES iterations; the Ritz values are "
+        "the eigenvalues of the Hessenberg matrix, an estimate of the "
+        "spectrum of the preconditioned operator (all 1 for an exact "
+        "preconditioner). Numbers in `bench/coupling.json` "
+        "(`krylov_spectra`).",
+        "",
+        "| state | model edits | Δt [s] | preconditioner | iterations | "
+        "residual reduced to | Ritz values, smallest–largest \\|λ\\| |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    order = {"chute1": 0, "chute20": 1, "layer2d": 2, "layer2dSquare": 3,
+             "drum50": 4}
+    for r in sorted(runs, key=lambda r: (order.get(r["state"], 9),
+                                         r["edits"], r["dt"],
+                                         r["preconditioner"])):
+        edits = ", ".join("`" + e.split(":", 1)[-1] + "`"
+                          for e in r["edits"]) or "–"
+        if r["status"] != "ok":
+            cells = [r["state"], edits, f"{r['dt']:g}", r["preconditioner"],
+                     r["status"], "", ""]
+        else:
+            cells = [r["state"], edits, f"{r['dt']:g}", r["preconditioner"],
+                     str(r["iterations"]), f"{r['relative_residual']:.2g}",
+                     f"{r['ritz_smallest']:.3g}–{r['ritz_largest']:.3g}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
 def harness_section():
     """The coupling harness's measurements (bench/coupling.json, written
     by bench/harness): every coupling against 200 correctors from the same
@@ -392,8 +431,8 @@ def write(results, path):
     section = adaptive_section(results)
     if section:
         lines += ["", *section]
-    for section in (harness_section(), whole_chute_section(),
-                    tutorials_section()):
+    for section in (harness_section(), spectra_section(),
+                    whole_chute_section(), tutorials_section()):
         if section:
             lines += ["", *section]
     notes = warnings(results)
