@@ -458,24 +458,16 @@ def spectrum(state, dt, preconditioner, edits):
 
 
 def store_spectra(entries, command):
-    data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
-    spectra = data.setdefault("krylov_spectra", {})
-    spectra["description"] = (
+    store_runs(
+        "krylov_spectra",
         "Ritz values (real, imaginary) of the Krylov coupling's "
         "preconditioned operator in one step of dt from a state "
         "(bench/harness spectrum): the eigenvalues of the Hessenberg matrix "
         "of up to 30 FGMRES iterations. The nearer all are to 1, the better "
-        "the preconditioner; relative_residual is the reduction reached.")
-    runs = spectra.setdefault("runs", [])
-
-    def key(e):
-        return (e["state"], e["dt"], e["preconditioner"], tuple(e["edits"]))
-    new = {key(e) for e in entries}
-    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
-             "command": command}
-    runs[:] = [e for e in runs if key(e) not in new] + [
-        dict(e, **stamp) for e in entries]
-    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+        "the preconditioner; relative_residual is the reduction reached.",
+        lambda e: (e["state"], e["dt"], e["preconditioner"],
+                   tuple(e["edits"])),
+        entries, command)
 
 
 def machine():
@@ -487,10 +479,25 @@ def machine():
     return f"{platform.node()}: {model}, {len(list(Path('/sys/devices/system/cpu').glob('cpu[0-9]*')))} cores"
 
 
-def store(entries, command):
+def store_runs(section, description, key, entries, command):
+    """Merge entries, stamped with the date, the machine and the command,
+    into bench/coupling.json[section]["runs"]; an entry with the same key
+    replaces the older one."""
     data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
-    harness = data.setdefault("harness", {})
-    harness["description"] = (
+    part = data.setdefault(section, {})
+    part["description"] = description
+    runs = part.setdefault("runs", [])
+    new = {key(e) for e in entries}
+    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
+             "command": command}
+    runs[:] = [e for e in runs if key(e) not in new] + [
+        dict(e, **stamp) for e in entries]
+    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+
+
+def store(entries, command):
+    store_runs(
+        "harness",
         "One-step convergence harness (bench/harness, bench/README.md): "
         "from a written state, `steps` fixed steps of `dt` with a coupling, "
         "against the reference coupling (PISO, 200 correctors, p_rgh to "
@@ -499,18 +506,10 @@ def store(entries, command):
         "|U_z| in the air; l2_p_base: relative L2 of p along the base; "
         "l2_u_last_columns: relative L2 of U over the grains of the last "
         "ten columns; min_p_grains: the lowest p in the grains (and the "
-        "reference's); cpu_ms_per_step over steps 2 to `steps`, serial.")
-    runs = harness.setdefault("runs", [])
-
-    def key(e):
-        return (e["state"], e["dt"], e["steps"], e["coupling"],
-                tuple(e["edits"]))
-    new = {key(e) for e in entries}
-    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
-             "command": command}
-    runs[:] = [e for e in runs if key(e) not in new] + [
-        dict(e, **stamp) for e in entries]
-    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+        "reference's); cpu_ms_per_step over steps 2 to `steps`, serial.",
+        lambda e: (e["state"], e["dt"], e["steps"], e["coupling"],
+                   tuple(e["edits"])),
+        entries, command)
 
 
 def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
@@ -574,25 +573,16 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
 
 
 def store_whole(entries, command):
-    data = json.loads(RESULTS.read_text()) if RESULTS.exists() else {}
-    whole = data.setdefault("whole_chute", {})
-    whole["description"] = (
+    store_runs(
+        "whole_chute",
         "The chute tutorial (155 x 40) from rest to end_time, serial, with "
         "a coupling (bench/harness chute): steps, CPU seconds, pressure "
         "solutions per step, and the outflow at the end against Bagnold "
         "(5.4), Gray & Chugunov (5.8) and (5.10) with its change over the "
-        "last written second (validation/chute/post.py outflow).")
-    runs = whole.setdefault("runs", [])
-
-    def key(e):
-        return (e["coupling"], e["end_time"], e["max_alpha_sub_cycles"],
-                e["max_delta_t"], tuple(e["edits"]))
-    new = {key(e) for e in entries}
-    stamp = {"date": datetime.date.today().isoformat(), "machine": machine(),
-             "command": command}
-    runs[:] = [e for e in runs if key(e) not in new] + [
-        dict(e, **stamp) for e in entries]
-    RESULTS.write_text(json.dumps(data, indent=1) + "\n")
+        "last written second (validation/chute/post.py outflow).",
+        lambda e: (e["coupling"], e["end_time"], e["max_alpha_sub_cycles"],
+                   e["max_delta_t"], tuple(e["edits"])),
+        entries, command)
 
 
 def main(argv=None):

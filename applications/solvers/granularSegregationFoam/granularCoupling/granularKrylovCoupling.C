@@ -105,6 +105,30 @@ class homogeneousOperator
         intCoeffs = M_.internalCoeffs().component(cmpt);
     }
 
+    //- The field whose valid components are op(cmpt, the component of x)
+    //  with the matrix of that component set; the others zero
+    template<class Op>
+    tmp<Field<Type>> perComponent(const Field<Type>& x, const Op& op)
+    {
+        tmp<Field<Type>> tresult(new Field<Type>(x.size(), Zero));
+        const auto valid = M_.psi().mesh().template validComponents<Type>();
+        FieldField<Field, scalar> bouCoeffs, intCoeffs;
+        for (direction cmpt = 0; cmpt < pTraits<Type>::nComponents; ++cmpt)
+        {
+            if (component(valid, cmpt) == -1)
+            {
+                continue;
+            }
+            setComponent(cmpt, bouCoeffs, intCoeffs);
+            tresult.ref().replace
+            (
+                cmpt,
+                op(cmpt, bouCoeffs, intCoeffs, x.component(cmpt))
+            );
+        }
+        return tresult;
+    }
+
 public:
 
     homogeneousOperator
@@ -124,59 +148,53 @@ public:
     tmp<Field<Type>> apply(const Field<Type>& psi)
     {
         const scalarField& V = M_.psi().mesh().V();
-        tmp<Field<Type>> tApsi(new Field<Type>(psi.size(), Zero));
-        const auto valid = M_.psi().mesh().template validComponents<Type>();
-        FieldField<Field, scalar> bouCoeffs, intCoeffs;
-        for (direction cmpt = 0; cmpt < pTraits<Type>::nComponents; ++cmpt)
-        {
-            if (component(valid, cmpt) == -1)
-            {
-                continue;
-            }
-            setComponent(cmpt, bouCoeffs, intCoeffs);
-            solveScalarField Apsi(psi.size());
-            M_.Amul
+        return perComponent
+        (
+            psi,
+            [&]
             (
-                Apsi,
-                tmp<solveScalarField>::New(psi.component(cmpt)),
-                bouCoeffs,
-                interfaces_,
-                cmpt
-            );
-            tApsi.ref().replace(cmpt, Apsi/V);
-        }
-        return tApsi;
+                const direction cmpt,
+                const FieldField<Field, scalar>& bouCoeffs,
+                const FieldField<Field, scalar>&,
+                const tmp<scalarField>& psiCmpt
+            )
+            {
+                solveScalarField Apsi(psi.size());
+                M_.Amul(Apsi, psiCmpt, bouCoeffs, interfaces_, cmpt);
+                return tmp<scalarField>::New(Apsi/V);
+            }
+        );
     }
 
     //- The psi with A psi = V rhs, from zero; adds the solver's iterations
     tmp<Field<Type>> solve(const Field<Type>& rhs, label& nIter)
     {
         const scalarField& V = M_.psi().mesh().V();
-        tmp<Field<Type>> tpsi(new Field<Type>(rhs.size(), Zero));
-        const auto valid = M_.psi().mesh().template validComponents<Type>();
-        FieldField<Field, scalar> bouCoeffs, intCoeffs;
-        for (direction cmpt = 0; cmpt < pTraits<Type>::nComponents; ++cmpt)
-        {
-            if (component(valid, cmpt) == -1)
-            {
-                continue;
-            }
-            setComponent(cmpt, bouCoeffs, intCoeffs);
-            scalarField psi(rhs.size(), Zero);
-            const scalarField source(V*rhs.component(cmpt));
-            const solverPerformance sp = lduMatrix::solver::New
+        return perComponent
+        (
+            rhs,
+            [&]
             (
-                M_.psi().name() + "Krylov",
-                M_,
-                bouCoeffs,
-                intCoeffs,
-                interfaces_,
-                controls_
-            )->solve(psi, source, cmpt);
-            nIter += sp.nIterations();
-            tpsi.ref().replace(cmpt, psi);
-        }
-        return tpsi;
+                const direction cmpt,
+                const FieldField<Field, scalar>& bouCoeffs,
+                const FieldField<Field, scalar>& intCoeffs,
+                const tmp<scalarField>& rhsCmpt
+            )
+            {
+                tmp<scalarField> tpsi(new scalarField(rhs.size(), Zero));
+                const scalarField source(V*rhsCmpt());
+                nIter += lduMatrix::solver::New
+                (
+                    M_.psi().name() + "Krylov",
+                    M_,
+                    bouCoeffs,
+                    intCoeffs,
+                    interfaces_,
+                    controls_
+                )->solve(tpsi.ref(), source, cmpt).nIterations();
+                return tpsi;
+            }
+        );
     }
 };
 
