@@ -10,13 +10,14 @@ floor under the column, cut from the walls by topoSet and createPatch.
    open top (p = rho^a g L_z) leaves the air at rest; at p = 0 instead,
    the same as the top, the air is driven through the box.
 """
+import json
 import re
 import shutil
 
 import numpy as np
 import pytest
 
-from cases import edit, foam, fresh_case, volumes
+from cases import RESULTS, edit, foam, fresh_case, volumes, write_results
 from chute.post import read_field
 from squareDrum.post import function_table
 
@@ -124,9 +125,20 @@ def test_grains_drain_and_balance(foam_env):
     assert len(a) > 50, f"only {len(a)} rows of invariants"
     assert balance_grains.max() < 1e-10, balance_grains.max()
     assert balance_air.max() < 1e-10, balance_air.max()
+    record({"grains_lost_fraction": float(lost), "end_time": float(t[-1]),
+            "largest_balance_air": float(balance_air.max()),
+            "largest_balance_grains": float(balance_grains.max())})
     assert a[:, 5].min() > -1e-12 and a[:, 6].max() < 1 + 1e-12, (
         "alpha.grains outside [0, 1]")
     assert (a[:, 8] == 0).all(), "non-finite cells"
+
+
+def record(numbers):
+    """Merge numbers into validation/results/opening/opening.json."""
+    path = RESULTS / "opening" / "opening.json"
+    old = json.loads(path.read_text()) if path.exists() else {}
+    old.update(numbers)
+    write_results(RESULTS / "opening", "opening", old)
 
 
 def _max_speed(case, end_time):
@@ -140,6 +152,9 @@ def test_air_at_rest_with_hydrostatic_opening(foam_env):
                                     grains=False, end_time=end), end)
     driven = _max_speed(opening_case("air_p0", 0.0, grains=False,
                                      end_time=end), end)
+    record({"air_alone_end_time": float(end),
+            "air_speed_hydrostatic_opening": still,
+            "air_speed_opening_at_0_Pa": driven})
     print(f"largest air speed at {end} s: hole at rho^a g L_z "
           f"{still:.2e} m/s, at 0 Pa {driven:.2e} m/s")
     assert still < 1e-6, f"air moves at {still:.3e} m/s"
