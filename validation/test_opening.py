@@ -6,7 +6,9 @@ floor under the column, cut from the walls by topoSet and createPatch.
    time integral of its outflow through the hole (the granularInvariants
    balance) to 1e-10, with continuity solved to round-off (p_rghFinal to
    1e-13; the balance follows the pressure tolerance, as on the chute).
-2. In air alone, the hole at the air's hydrostatic pressure below the
+2. granularInvariants writes the lowest grain pressure of each step, as
+   the log gives it.
+3. In air alone, the hole at the air's hydrostatic pressure below the
    open top (p = rho^a g L_z) leaves the air at rest; at p = 0 instead,
    the same as the top, the air is driven through the box.
 """
@@ -17,7 +19,8 @@ import shutil
 import numpy as np
 import pytest
 
-from cases import RESULTS, edit, foam, fresh_case, volumes, write_results
+from cases import (RESULTS, edit, foam, foam_output, fresh_case, volumes,
+                   write_results)
 from chute.post import read_field
 from squareDrum.post import function_table
 
@@ -103,13 +106,19 @@ def opening_case(dest, p_opening, grains, end_time):
     shutil.copytree(case / "0.orig", case / "0")
     if grains:
         foam(case, "setFields")
-    foam(case, "granularSegregationFoam")
-    return case
+    log, _ = foam_output(case, "granularSegregationFoam")
+    return case, log
 
 
-def test_grains_drain_and_balance(foam_env):
-    case = opening_case("grains", P_HYDROSTATIC, grains=True,
+@pytest.fixture(scope="module")
+def drained(foam_env):
+    """The grains case, run to 0.2 s: (case, log)."""
+    return opening_case("grains", P_HYDROSTATIC, grains=True,
                         end_time="0.2")
+
+
+def test_grains_drain_and_balance(drained):
+    case, _ = drained
     t, vol = volumes(case)
     v = np.array(vol["alpha.grains"])
     lost = (v[0] - v[-1]) / v[0]
@@ -133,6 +142,26 @@ def test_grains_drain_and_balance(foam_env):
     assert (a[:, 8] == 0).all(), "non-finite cells"
 
 
+def test_invariants_report_grain_pressure(drained):
+    """granularInvariants writes, after each step, the lowest pressure seen
+    by the rheology in the grains, as the solver's log gives it."""
+    case, log = drained
+    lines = re.findall(r"^Grain pressure seen by the rheology: min = (\S+) Pa",
+                       log, re.M)
+    path = sorted((case / "postProcessing" / "invariants").glob(
+        "*/granularInvariants.dat"))[-1]
+    header = [h for h in path.read_text().splitlines()
+              if h.startswith("#")][-1]
+    assert header.split()[-1] == "minGrainPressure", header
+    a = function_table(case, "invariants", "granularInvariants.dat")
+    steps = log.count("\nTime = ")
+    assert len(a) == steps and len(lines) == steps + 1, (
+        f"{len(a)} rows, {len(lines)} log lines, {steps} steps")
+    logged = np.array([float(x) for x in lines[1:]])
+    assert np.allclose(a[:, -1], logged, rtol=1e-9, atol=1e-9), (
+        np.abs(a[:, -1] - logged).max())
+
+
 def record(numbers):
     """Merge numbers into validation/results/opening/opening.json."""
     path = RESULTS / "opening" / "opening.json"
@@ -149,9 +178,9 @@ def _max_speed(case, end_time):
 def test_air_at_rest_with_hydrostatic_opening(foam_env):
     end = "0.01"
     still = _max_speed(opening_case("air_hydrostatic", P_HYDROSTATIC,
-                                    grains=False, end_time=end), end)
+                                    grains=False, end_time=end)[0], end)
     driven = _max_speed(opening_case("air_p0", 0.0, grains=False,
-                                     end_time=end), end)
+                                     end_time=end)[0], end)
     record({"air_alone_end_time": float(end),
             "air_speed_hydrostatic_opening": still,
             "air_speed_opening_at_0_Pa": driven})

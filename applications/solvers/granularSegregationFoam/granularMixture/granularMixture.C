@@ -782,7 +782,19 @@ Foam::granularMixture::granularMixture
     G_(),
     segregationRate_(mesh_.nCells(), Zero),
     gBody_(Zero),
-    tensionWarning_(readTensionWarning())
+    tensionWarning_(readTensionWarning()),
+    grainPressureMin_
+    (
+        IOobject
+        (
+            "grainPressureMin",
+            mesh_.time().constant(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        dimensionedScalar("grainPressureMin", dimPressure, VGREAT)
+    )
 {
     readAir();
 
@@ -1088,7 +1100,7 @@ Foam::scalar Foam::granularMixture::reportGrainPressure
 (
     const volScalarField& p,
     const bool closed
-) const
+)
 {
     const scalarField pg(rheologyPressure(p, closed));
     const scalarField& air = alphas_[0].primitiveField();
@@ -1103,8 +1115,10 @@ Foam::scalar Foam::granularMixture::reportGrainPressure
     reduce(lowest, minOp<scalar>());
     if (lowest == GREAT)
     {
+        grainPressureMin_.value() = VGREAT;
         return lowest;
     }
+    grainPressureMin_.value() = lowest;
 
     Info<< "Grain pressure seen by the rheology: min = " << lowest << " Pa";
     if (lowest < -tensionWarning_.value())

@@ -6,6 +6,7 @@
 
 #include "granularInvariants.H"
 #include "volFields.H"
+#include "uniformDimensionedFields.H"
 #include "surfaceFields.H"
 #include "granularInput.H"
 #include "addToRunTimeSelectionTable.H"
@@ -17,6 +18,9 @@ namespace Foam
 namespace functionObjects
 {
     defineTypeNameAndDebug(granularInvariants, 0);
+
+    //- The solver's lowest grain pressure of the step (granularMixture)
+    static const word grainPressureName("grainPressureMin");
     addToRunTimeSelectionTable(functionObject, granularInvariants, dictionary);
 }
 }
@@ -71,6 +75,10 @@ void Foam::functionObjects::granularInvariants::writeFileHeader(Ostream& os)
     }
     writeTabbed(os, "max|sum-1|");
     writeTabbed(os, "nonFinite");
+    if (foundObject<uniformDimensionedScalarField>(grainPressureName))
+    {
+        writeTabbed(os, "minGrainPressure");
+    }
     os  << endl;
 }
 
@@ -183,7 +191,14 @@ bool Foam::functionObjects::granularInvariants::write()
     const scalar sumErr = gMax(mag(sumAlpha - 1.0)());
     if (Pstream::master())
     {
-        file() << tab << sumErr << tab << nonFinite << endl;
+        file() << tab << sumErr << tab << nonFinite;
+        const auto* pg =
+            findObject<uniformDimensionedScalarField>(grainPressureName);
+        if (pg)
+        {
+            file() << tab << pg->value();
+        }
+        file() << endl;
     }
     return true;
 }
