@@ -446,8 +446,8 @@ def spectrum(state, dt, preconditioner, edits):
     k = H.shape[1]
     ritz = np.linalg.eigvals(H[:k, :k])
     ritz = ritz[np.argsort(-np.abs(ritz))]
-    last = re.findall(r"^Krylov coupling: \S+, (\d+) iterations, residual "
-                      r"(\S+) -> (\S+) m/s", text, re.M)[-1]
+    last = re.findall(r"^Krylov coupling: \S+, (\d+) iterations .*?, "
+                      r"residual (\S+) -> (\S+) m/s", text, re.M)[-1]
     entry.update(iterations=int(last[0]),
                  relative_residual=float(f"{float(last[2]) / float(last[1]):.3g}"),
                  ritz_largest=float(f"{abs(ritz[0]):.3g}"),

@@ -390,6 +390,12 @@ public:
         nInnerIter_(0)
     {}
 
+    //- Iterations of the inner U and p_rgh solutions, summed
+    label nInnerIterations() const
+    {
+        return nInnerIter_;
+    }
+
     label nPressureSolutions() const
     {
         return nPressureSolutions_;
@@ -685,7 +691,8 @@ void Foam::granularKrylovCoupling::solve
     nPressureSolutions_ = cs.nPressureSolutions();
 
     Info<< "Krylov coupling: " << preconditionerNames[preconditioner_]
-        << ", " << nIter_ << " iterations, residual " << beta << " -> "
+        << ", " << nIter_ << " iterations (" << cs.nInnerIterations()
+        << " of the inner solvers), residual " << beta << " -> "
         << res << " m/s, " << relResidual_ << " of the "
         << (speed > 0 ? "RMS speed" : "initial residual");
     if (res > target)
