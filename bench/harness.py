@@ -519,7 +519,7 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     and the cost."""
     from chute.post import outflow
     tag = "_".join(filter(None, [
-        coupling, f"sub{sub_cycles}" if sub_cycles else "",
+        coupling, f"sub{sub_cycles}" if sub_cycles is not None else "",
         f"dt{max_delta_t:g}" if max_delta_t else "",
         _tag(edits) if edits else ""]))
     case = WORK / "chute" / tag
@@ -532,11 +532,14 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     set_entry(case, "system/chuteParameters", "endTime", end_time)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
-    if sub_cycles:
+    if sub_cycles is not None:
         # the phases' solver entry has a regular-expression name, which
-        # foamDictionary cannot scope
+        # foamDictionary cannot scope; 0: the transport in the momentum
+        # step (nAlphaSubCycles 1)
         edit(case / "system" / "fvSolution",
-             [(r"nAlphaSubCycles\s+\d+;", f"maxAlphaSubCycles {sub_cycles};")])
+             [(r"(?:max|n)AlphaSubCycles\s+\d+;",
+               f"maxAlphaSubCycles {sub_cycles};" if sub_cycles
+               else "nAlphaSubCycles 1;")])
     if max_delta_t:
         set_entry(case, "system/controlDict", "maxDeltaT", max_delta_t)
     for dictionary, entry, value in map(parse_edit, edits):
@@ -610,8 +613,9 @@ def main(argv=None):
     pc.add_argument("--couplings", nargs="+", default=["PISO-10"])
     pc.add_argument("--end-time", type=float, default=25)
     pc.add_argument("--sub-cycles", type=int, default=None,
-                    help="maxAlphaSubCycles (in the place of "
-                    "nAlphaSubCycles)")
+                    help="maxAlphaSubCycles M; 0: nAlphaSubCycles 1 (the "
+                    "transport in the momentum step); default: the "
+                    "tutorial's")
     pc.add_argument("--max-delta-t", type=float, default=None)
     pc.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")

@@ -219,7 +219,8 @@ def whole_chute_section():
         cells = [r["coupling"] + (" " + ", ".join(
                      "`" + e.split(":", 1)[-1] + "`" for e in r["edits"])
                      if r["edits"] else ""),
-                 g(r["max_alpha_sub_cycles"], "{}"),
+                 ("1, in the step" if r["max_alpha_sub_cycles"] == 0
+                  else g(r["max_alpha_sub_cycles"], "{}")),
                  g(r["max_delta_t"]), g(r["end_time"]), g(r["steps"], "{}"),
                  g(r["cpu_seconds"], "{:.0f}"),
                  g(r["pressure_solutions_per_step"], "{:.1f}"),
