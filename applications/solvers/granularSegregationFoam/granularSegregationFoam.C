@@ -83,8 +83,8 @@ int main(int argc, char *argv[])
     // fvSolution PIMPLE { viscousStress explicit | implicit; }: does the
     // viscous part of (4.11) limit the time step?
     const bool viscousLimit =
-        granularMixture::readViscousStress(pimple)
-     == granularMixture::viscousStress::explicitStress;
+        granularCoupling::readViscousStress(pimple)
+     == granularCoupling::viscousStress::explicitStress;
 
     turbulence->validate();
     mixture.checkFinite(U, p);

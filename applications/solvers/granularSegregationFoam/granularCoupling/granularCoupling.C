@@ -11,7 +11,6 @@
 #include "extrapolatedCalculatedFvPatchFields.H"
 #include "granularInput.H"
 #include "adjustPhi.H"
-#include "granularMixture.H"
 
 // * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * * //
 
@@ -30,6 +29,14 @@ Foam::granularCoupling::transposeStressNames
     { transposeStress::full, "full" },
     { transposeStress::gradEta, "gradEta" },
     { transposeStress::none, "none" },
+});
+
+
+const Foam::Enum<Foam::granularCoupling::viscousStress>
+Foam::granularCoupling::viscousStressNames
+({
+    { viscousStress::explicitStress, "explicit" },
+    { viscousStress::implicitStress, "implicit" },
 });
 
 
@@ -67,13 +74,13 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
 
     // Too few PISO correctors for the implicit stress (class description)
     const bool implicitStress =
-        granularMixture::viscousStressNames.getOrDefault
+        viscousStressNames.getOrDefault
         (
             "viscousStress",
             pimple_.dict(),
-            granularMixture::viscousStress::explicitStress
+            viscousStress::explicitStress
         )
-     == granularMixture::viscousStress::implicitStress;
+     == viscousStress::implicitStress;
     if (implicitStress && !Krylov() && pimple_.nCorrPISO() < 4)
     {
         WarningInFunction
@@ -95,6 +102,34 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::granularCoupling::viscousStress
+Foam::granularCoupling::readViscousStress(const pimpleControl& pimple)
+{
+    const dictionary& dict = pimple.dict();
+    const viscousStress v = viscousStressNames.getOrDefault
+    (
+        "viscousStress", dict, viscousStress::explicitStress
+    );
+    if (v == viscousStress::implicitStress && !pimple.momentumPredictor())
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword 'viscousStress' in dictionary "
+            << dict.name() << ": viscousStress = implicit needs"
+            << " momentumPredictor yes (without the predictor the stress"
+            << " acts explicitly through H(U))" << nl
+            << exit(FatalIOError);
+    }
+
+    Info<< "Viscous stress: " << viscousStressNames[v]
+        << (v == viscousStress::implicitStress
+            ? " (the viscous part of (4.11) does not limit Delta t)"
+            : " (Delta t limited by the whole of (4.11))")
+        << nl << endl;
+
+    return v;
+}
+
 
 void Foam::granularCoupling::read()
 {

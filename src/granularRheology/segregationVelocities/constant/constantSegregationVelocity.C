@@ -5,6 +5,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "constantSegregationVelocity.H"
+#include "surfaceInterpolate.H"
 #include "granularInput.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -39,6 +40,19 @@ Foam::segregationVelocities::constant::constant
         ).value()
     )
 {}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::tmp<Foam::surfaceScalarField>
+Foam::segregationVelocities::constant::faceValues
+(
+    const volScalarField& f,
+    const volScalarField&
+) const
+{
+    return fvc::interpolate(f);
+}
 
 
 // ************************************************************************* //

@@ -5,6 +5,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "segregationVelocity.H"
+#include "surfaceInterpolate.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -12,6 +13,22 @@ namespace Foam
 {
     defineTypeNameAndDebug(segregationVelocity, 0);
     defineRunTimeSelectionTable(segregationVelocity, dictionary);
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+Foam::tmp<Foam::surfaceScalarField> Foam::segregationVelocity::faceValues
+(
+    const volScalarField& f,
+    const volScalarField& aij
+) const
+{
+    const surfaceScalarField aijf(fvc::interpolate(aij));
+    return
+        pos(aijf - SMALL)*fvc::interpolate(aij*f)
+       /max(aijf, dimensionedScalar("small", dimless, SMALL))
+      + neg0(aijf - SMALL)*fvc::interpolate(f);
 }
 
 
