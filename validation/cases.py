@@ -200,7 +200,7 @@ def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
 
 
 def log_reports(log):
-    """The solver's progress reports (granularMixture::report) in its log:
+    """The solver's progress reports (granularPhases::report) in its log:
     {time name: [volumes {phase: V}, segregation index]}; the first report
     is at the start time, the others follow their "Time = " line."""
     out, time_name = {}, "0"

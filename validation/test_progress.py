@@ -18,7 +18,7 @@ PHASES = ("alpha.air", "alpha.small", "alpha.large")
 def segregation_index(alphas, V):
     """Danckwerts' intensity of segregation of the grain phases, weighted by
     the grain volume, from the fractions clipped at zero
-    (granularMixture::segregationIndex)."""
+    (granularPhases::segregationIndex)."""
     clipped = [np.maximum(a, 0) for a in alphas[1:]]
     grains = sum(clipped)
     w = V * grains

@@ -1,5 +1,5 @@
-"""Unit tier: the C++ unit tests of libgranularRheology and the
-well-posedness utility on the paper's table 1."""
+"""Unit tier: the C++ unit tests of libgranularRheology and of the parts of
+libgranularMixture, and the well-posedness utility on the paper's table 1."""
 import re
 import shutil
 import tempfile
@@ -91,3 +91,27 @@ def test_well_posedness_utility_table1(foam_env, case_copy):
     (lo, hi), = r["BarkerGray"]
     assert lo == 0.0
     assert hi == pytest.approx(16.9918, rel=5e-5)
+
+
+def test_granular_mixture_parts(foam_env, case_copy):
+    """Test-granularMixture: the parts of libgranularMixture on the
+    segregation column (gravity split, phases, the pairwise fluxes' (2.12)
+    and (2.17), one transport step's volumes and bounds, the time-step
+    parts, the air's pressure level), 15 checks, each printed PASS or
+    FAIL."""
+    case = case_copy("segregationColumn")
+    shutil.copytree(case / "0.orig", case / "0")
+    for cmd in (["blockMesh"], ["setGranularFields"]):
+        proc = run(cmd, cwd=case)
+        assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr
+    path = shutil.which("Test-granularMixture")
+    assert path, "Test-granularMixture not found on PATH: was ./Allwmake run?"
+    proc = run([path], cwd=case)
+    out = proc.stdout + proc.stderr
+    items = re.findall(r"^(PASS|FAIL) (.*)$", out, re.M)
+    failed = [d for s, d in items if s == "FAIL"]
+    assert not failed, "\n".join(failed)
+    summary = re.search(r"^(\d+) passed, (\d+) failed$", out, re.M)
+    assert summary, f"no summary line in the output:\n{out[-2000:]}"
+    assert (int(summary.group(1)), int(summary.group(2))) == (len(items), 0)
+    assert len(items) >= 15 and proc.returncode == 0, out[-2000:]

@@ -30,7 +30,7 @@ Description
     index, and an estimate of the wall time to finish (also once a minute).  With
     fvSolution PIMPLE { momentumPredictor yes; viscousStress implicit; }
     the stress is solved implicitly in the momentum predictor and the
-    viscous part no longer limits the step (see granularMixture.H).
+    viscous part no longer limits the step (see granularCoupling.H).
 
 \*---------------------------------------------------------------------------*/
 
