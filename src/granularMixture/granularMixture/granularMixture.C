@@ -36,6 +36,29 @@ Foam::IOobject Foam::granularMixture::stateIO
 }
 
 
+Foam::tmp<Foam::volScalarField> Foam::granularMixture::zeroState
+(
+    const dimensionSet& dims
+) const
+{
+    return tmp<volScalarField>::New
+    (
+        IOobject
+        (
+            "zeroState",
+            mesh_.time().timeName(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        ),
+        mesh_,
+        dimensionedScalar(dims, Zero),
+        zeroGradientFvPatchScalarField::typeName
+    );
+}
+
+
 void Foam::granularMixture::calcMixture()
 {
     const volScalarField& alphaAir = phases_.air();
@@ -79,60 +102,15 @@ Foam::granularMixture::granularMixture
     transport_(phi, phases_, pairFluxes_, air_, gravity_, rheology_),
     timeStep_(mesh_),
     pressure_(*this, phases_, air_, gravity_),
-    pGranular_
-    (
-        stateIO("pGranular", true), mesh_,
-        dimensionedScalar(dimPressure, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    shearRate_
-    (
-        stateIO("shearRate", true), mesh_,
-        dimensionedScalar(inv(dimTime), Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    dbar_
-    (
-        stateIO("dbar", true), mesh_,
-        dimensionedScalar(dimLength, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    I_
-    (
-        stateIO("I", true), mesh_,
-        dimensionedScalar(dimless, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    etaGranular_
-    (
-        stateIO("etaGranular", true), mesh_,
-        dimensionedScalar(dimPressure*dimTime, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    illPosed_
-    (
-        stateIO("illPosed", true), mesh_,
-        dimensionedScalar(dimless, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    rho_
-    (
-        stateIO("granularMixture:rho", false), mesh_,
-        dimensionedScalar(dimDensity, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    eta_
-    (
-        stateIO("granularMixture:eta", false), mesh_,
-        dimensionedScalar(dimPressure*dimTime, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    ),
-    nu_
-    (
-        stateIO("granularMixture:nu", false), mesh_,
-        dimensionedScalar(dimViscosity, Zero),
-        zeroGradientFvPatchScalarField::typeName
-    )
+    pGranular_(stateIO("pGranular", true), zeroState(dimPressure)),
+    shearRate_(stateIO("shearRate", true), zeroState(inv(dimTime))),
+    dbar_(stateIO("dbar", true), zeroState(dimLength)),
+    I_(stateIO("I", true), zeroState(dimless)),
+    etaGranular_(stateIO("etaGranular", true), zeroState(dimPressure*dimTime)),
+    illPosed_(stateIO("illPosed", true), zeroState(dimless)),
+    rho_(stateIO("granularMixture:rho", false), zeroState(dimDensity)),
+    eta_(stateIO("granularMixture:eta", false), zeroState(dimPressure*dimTime)),
+    nu_(stateIO("granularMixture:nu", false), zeroState(dimViscosity))
 {
     // The density of the initial fractions: createFields.H builds p as
     // p_rgh + rho*gh before the first rheology, which evaluates with that p
