@@ -4,9 +4,11 @@ import re
 import shutil
 import tempfile
 
+import numpy as np
 import pytest
 
 from conftest import executable, run
+from chute.figure1 import parse_ranges, run_utility
 
 pytestmark = pytest.mark.unit
 
@@ -57,21 +59,6 @@ def test_granular_rheology_unit_suite(foam_env):
     assert passed >= 101, f"only {passed} checks ran"
 
 
-def parse_ranges(log):
-    """{phase: [(lo, hi), ...]} from the granularWellPosedness log."""
-    ranges, phase = {}, None
-    for line in log.splitlines():
-        m = re.match(r"grain phase (\S+): frictionLaw (\S+)", line)
-        if m:
-            phase = m.group(1)
-            ranges[phase] = []
-            continue
-        m = re.match(r"    well posed for I in \[(\S+), (\S+)\]", line)
-        if m and phase:
-            ranges[phase].append((float(m.group(1)), float(m.group(2))))
-    return ranges
-
-
 def test_well_posedness_utility_table1(foam_env, case_copy):
     """Table 1: Jop well posed on [0.00397, 0.28016], Barker-Gray on
     [0, 16.9918] (ERRATA item 1)."""
@@ -115,3 +102,27 @@ def test_granular_mixture_parts(foam_env, case_copy):
     assert summary, f"no summary line in the output:\n{out[-2000:]}"
     assert (int(summary.group(1)), int(summary.group(2))) == (len(items), 0)
     assert len(items) >= 15 and proc.returncode == 0, out[-2000:]
+
+
+def test_well_posedness_table(foam_env, case_copy):
+    """granularWellPosedness -table (figure 1): the indicator it writes
+    agrees with the ranges it prints, to one point of the log-spaced table,
+    and mu of the Barker-Gray law vanishes towards I = 0 (the creep branch)
+    while Jop's tends to mu_s."""
+    case = case_copy("wellPosedness")
+    log, cols = run_utility(case)
+    I = cols["I"]
+    step = I[1] / I[0]
+    for phase in ("Jop", "BarkerGray"):
+        ranges = parse_ranges(log)[phase]
+        well = cols[f"wellPosed.{phase}"] > 0.5
+        inside = np.zeros_like(well)
+        for lo, hi in ranges:
+            inside |= (I >= lo * step) & (I <= hi / step)
+        near = np.zeros_like(well)
+        for lo, hi in ranges:
+            near |= (I >= lo / step) & (I <= hi * step)
+        assert np.all(well[inside]), phase
+        assert not np.any(well & ~near), phase
+    assert cols["mu.BarkerGray"][0] < 0.3 < cols["mu.Jop"][0]
+    assert cols["mu.Jop"][0] == pytest.approx(0.342, rel=1e-4)

@@ -32,6 +32,7 @@ Usage
 #include "Jop.H"
 #include "wellPosedness.H"
 #include "IStringStream.H"
+#include "OFstream.H"
 
 using namespace Foam;
 
@@ -81,6 +82,41 @@ void printRanges
 }
 
 
+void writeTable
+(
+    const granularRheology& rheology,
+    const scalar Imin,
+    const scalar Imax,
+    const label nPoints,
+    const fileName& path
+)
+{
+    OFstream os(path);
+    os.precision(12);
+    os  << "# I";
+    for (const word& name : rheology.names())
+    {
+        os  << " mu." << name << " wellPosed." << name;
+    }
+    os  << nl;
+    for (label k = 0; k < nPoints; ++k)
+    {
+        const scalar I =
+            Imin*Foam::pow(Imax/Imin, scalar(k)/max(nPoints - 1, 1));
+        os  << I;
+        forAll(rheology.names(), i)
+        {
+            const frictionLaw& law = rheology.law(i);
+            const scalar mu = law.mu(I);
+            os  << ' ' << mu << ' '
+                << (wellPosedness::illPosed(mu, I*law.dmudI(I)) ? 0 : 1);
+        }
+        os  << nl;
+    }
+    Info<< nl << "Wrote mu(I) at " << nPoints << " points to " << path << nl;
+}
+
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -95,12 +131,23 @@ int main(int argc, char *argv[])
     );
     argList::addOption("Imin", "scalar", "Lower end of the scan [1e-9]");
     argList::addOption("Imax", "scalar", "Upper end of the scan [1e4]");
+    argList::addOption
+    (
+        "table", "file", "Write mu(I) and its well-posedness to this file"
+    );
+    argList::addOption("points", "label", "Points of the table [600]");
 
     #include "setRootCase.H"
     #include "createTime.H"
 
     const scalar Imin = args.getOrDefault<scalar>("Imin", 1e-9);
     const scalar Imax = args.getOrDefault<scalar>("Imax", 1e4);
+    if (!(Imin > 0 && Imax > Imin))
+    {
+        FatalErrorInFunction
+            << "Invalid values of options -Imin " << Imin << " and -Imax "
+            << Imax << ": 0 < Imin < Imax" << nl << exit(FatalError);
+    }
 
     fileName dictPath(runTime.constant()/"granularProperties");
     if (args.found("dict"))
@@ -153,6 +200,23 @@ int main(int argc, char *argv[])
             printRanges(jop, Imin, Imax, "        ");
             Info<< "    I1 = " << c[frictionLaws::BarkerGray::I1] << nl;
         }
+    }
+
+    if (args.found("table"))
+    {
+        const label nPoints = args.getOrDefault<label>("points", 600);
+        if (nPoints < 2)
+        {
+            FatalErrorInFunction
+                << "Invalid value of option -points: " << nPoints
+                << " (at least 2)" << nl << exit(FatalError);
+        }
+        fileName path(args.get<fileName>("table").expand());
+        if (!path.isAbsolute())
+        {
+            path = args.path()/path;
+        }
+        writeTable(rheology, Imin, Imax, nPoints, path);
     }
 
     Info<< nl << "End" << nl << endl;
