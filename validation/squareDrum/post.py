@@ -10,9 +10,12 @@ OpenFOAM) and the ascii fields and moved points of the time directories.
     /usr/bin/python3 validation/squareDrum/post.py CASE [CASE ...] [--out DIR] [--readme README]
 
 writes figure13.png (J(t) of every case given), and for every case, keyed
-by its mesh and correctors (N50_30correctors), figure10, figure11 and the
-lobes plot, and its numbers into drum.json; with --readme README the runs
-of drum.json are rendered into that README between its markers.
+by its mesh, correctors and the settings that differ from the tutorial's
+(N50_30correctors, N50_30correctors_etaMax1000), figure10, figure11 and the
+lobes plot, and its numbers into drum.json; with several cases also
+settings.png (phi^s and the shear rate of each at its last common written
+times); with --readme README the runs of drum.json are rendered into that
+README between its markers.
 """
 import argparse
 import json
@@ -38,6 +41,8 @@ from squareDrum.tension import step_table  # noqa: E402
 DPI = 150
 PERIOD = 10.0                   # s, one revolution at Omega = -pi/5
 I1 = 0.01886                    # table 4: below it the law creeps
+ETA_MAX = 300.0                 # Pa s, the tutorial's cap (4.12)
+ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
@@ -63,9 +68,38 @@ def n_correctors(case):
     return int(m.group(1))
 
 
+def alpha_scheme(case):
+    """The scheme of div(phi,alpha) in case/system/fvSchemes (the advection
+    of the phases), e.g. vanLeer."""
+    text = re.sub(r"//.*", "", _read_text(Path(case) / "system" / "fvSchemes"))
+    m = re.search(r"div\(phi,alpha\)\s+Gauss\s+([^;]+);", text)
+    assert m, f"no div(phi,alpha) in {case}/system/fvSchemes"
+    return m.group(1).strip()
+
+
 def label(case):
-    """The key of a run in drum.json and its figures: N and correctors."""
-    return f"N{int(parameters(case)['N'])}_{n_correctors(case)}correctors"
+    """The key of a run in drum.json and its figures: N and correctors, and
+    the settings that differ from the tutorial's (etaMax, the advection
+    scheme)."""
+    par = parameters(case)
+    key = f"N{int(par['N'])}_{n_correctors(case)}correctors"
+    if par["etaMax"] != ETA_MAX:
+        key += f"_etaMax{par['etaMax']:g}"
+    if alpha_scheme(case) != ALPHA_SCHEME:
+        key += "_" + re.sub(r"\W+", "", alpha_scheme(case))
+    return key
+
+
+def body_shear_rate(case, names):
+    """The median shear rate 2|D| over the grains (phi^a < 1/2) at each
+    written time of names: in the rotating body the rigid rotation has no
+    strain, so this measures the body's creep (per second)."""
+    out = []
+    for name in names:
+        shear = read_field(case, name, "shearRate")
+        air = read_field(case, name, "alpha.air")
+        out.append(float(np.median(shear[air < 0.5])))
+    return out
 
 
 def _table(path):
@@ -251,7 +285,8 @@ def summary(case):
     m = monitor(case)
     v = volumes(case)
     out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
-           "etaMax": par["etaMax"], "endTime": float(m["t"][-1])}
+           "etaMax": par["etaMax"], "alphaScheme": alpha_scheme(case),
+           "endTime": float(m["t"][-1])}
     out["J_revolution"] = {
         f"{k * PERIOD:g}": float(np.interp(k * PERIOD, m["t"], m["J"]))
         for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
@@ -275,6 +310,8 @@ def summary(case):
     out["lowest_p_grains_last_revolution"] = min(lowest)
     out["written_times_with_negative_p_grains"] = int(
         sum(1 for x in lowest if x < 0))
+    out["body_shear_rate_median_last_revolution"] = float(
+        np.mean(body_shear_rate(case, names)))
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -316,14 +353,57 @@ def figure13(cases, out):
         m = monitor(case)
         ok = np.isfinite(m["J"])
         ax.plot(m["t"][ok], m["J"][ok],
-                label=f"N = {int(parameters(case)['N'])}, "
-                      f"{n_correctors(case)} correctors")
+                label=label(case).replace("_", ", "))
     ax.set_xlabel("t [s]")
     ax.set_ylabel(r"$\mathcal{J}(t)$  (7.6)")
     ax.set_xlim(0, None)
     ax.set_ylim(0, None)
     ax.legend()
     ax.set_title("Change of the small-grain fraction over one revolution")
+    _save(fig, out)
+
+
+def figure_cases(cases, out, n_times=4):
+    """phi^s (upper row of each case) and log10 of the shear rate 2|D|
+    (lower row) in the grains, at the last n_times written times common to
+    all the cases, a quarter turn apart: the settings side by side.  The
+    shear rate in the body is its creep (the rigid rotation has none)."""
+    common = set.intersection(*[{round(float(n), 6) for n in time_names(c)}
+                                for c in cases])
+    quarter = [t for t in sorted(common)
+               if abs(t / (PERIOD / 4) - round(t / (PERIOD / 4))) < 1e-6
+               and t > 0]
+    times = quarter[-n_times:]
+    fig, axes = plt.subplots(2 * len(cases), len(times), squeeze=False,
+                             figsize=(2.4 * len(times), 4.6 * len(cases)))
+    for i, case in enumerate(cases):
+        for j, t in enumerate(times):
+            X, Y, f = grid(case, _time_name(case, t),
+                           ["alpha.small", "alpha.large", "alpha.air",
+                            "shearRate"])
+            body = f["alpha.air"] < 0.5
+            grains = f["alpha.small"] + f["alpha.large"]
+            phis = np.where(body, f["alpha.small"] / np.maximum(grains, 1e-12),
+                            np.nan)
+            shear = np.where(body, np.log10(np.maximum(f["shearRate"], 1e-6)),
+                             np.nan)
+            pc = axes[2 * i, j].pcolormesh(X, Y, phis, cmap="viridis",
+                                           vmin=0, vmax=1, shading="flat")
+            ps = axes[2 * i + 1, j].pcolormesh(X, Y, shear, cmap="magma",
+                                               vmin=-3, vmax=1.5,
+                                               shading="flat")
+            for ax in axes[2 * i:2 * i + 2, j]:
+                _drum_axes(ax, X, Y)
+            axes[2 * i, j].set_title(f"{label(case)}\nt = {t:g} s",
+                                     fontsize=7)
+            axes[2 * i + 1, j].set_title(
+                f"median 2|D| {np.median(f['shearRate'][body]):.3f} 1/s",
+                fontsize=7)
+    fig.subplots_adjust(right=0.85)
+    fig.colorbar(pc, cax=fig.add_axes([0.88, 0.55, 0.02, 0.3]),
+                 label=r"$\varphi^s$")
+    fig.colorbar(ps, cax=fig.add_axes([0.88, 0.15, 0.02, 0.3]),
+                 label=r"$\log_{10} 2|D|$ [1/s]")
     _save(fig, out)
 
 
@@ -418,7 +498,7 @@ README_END = "<!-- end of drum results -->"
 def results_table(numbers):
     """Markdown rows of the runs in numbers (drum.json's run entries)."""
     runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
-    runs.sort(key=lambda r: (r["N"], r["nCorrectors"]))
+    runs.sort(key=lambda r: (r["N"], r["nCorrectors"], r["etaMax"]))
 
     def g(x, fmt="{:.3g}"):
         return "–" if x is None else fmt.format(x)
@@ -431,6 +511,9 @@ def results_table(numbers):
          f"{r['surface_angle_range_deg'][1]:.1f}°)"),
         ("peak speed relative to the drum, mean / max [m/s]", lambda r:
          f"{r['peak_speed_mean']:.3f} / {r['peak_speed_max']:.3f}"),
+        ("median shear rate in the grains (the body's creep), last "
+         "revolution [1/s]", lambda r: g(r.get(
+             "body_shear_rate_median_last_revolution"))),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
         ("lowest p in the grains, written times of the last revolution [Pa]",
@@ -444,7 +527,9 @@ def results_table(numbers):
          f"{r['alpha_min']:.1e} / {r['alpha_max']:g}"),
     ]
     head = "| | " + " | ".join(
-        f"N = {r['N']}, {r['nCorrectors']} correctors" for r in runs) + " |"
+        f"N = {r['N']}, {r['nCorrectors']} correctors, η_max {r['etaMax']:g}"
+        + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
+           != ALPHA_SCHEME else "") for r in runs) + " |"
     lines = [head, "|---" * (len(runs) + 1) + "|"]
     for name, fn in rows:
         lines.append(f"| {name} | " + " | ".join(fn(r) for r in runs) + " |")
@@ -469,9 +554,12 @@ def main(argv=None):
                              "README, between its drum results markers")
     args = parser.parse_args(argv)
     cases = sorted(args.cases, key=lambda c: (parameters(c)["N"],
-                                              n_correctors(c)))
+                                              n_correctors(c),
+                                              parameters(c)["etaMax"]))
     out = args.out or cases[-1] / "figures"
     figure13(cases, out / "figure13.png")
+    if len(cases) > 1:
+        figure_cases(cases, out / "settings.png")
     numbers = {}
     for case in cases:
         s = summary(case)
