@@ -36,6 +36,10 @@ def foam_env():
     assert Path(os.environ["GSF_PROJECT_DIR"]).resolve() == PROJECT, (
         "the sourced environment belongs to another checkout: "
         f"{os.environ['GSF_PROJECT_DIR']}")
+    import granularfoam
+    assert PROJECT / "platforms" in Path(granularfoam.__file__).resolve().parents, (
+        f"granularfoam imported from {granularfoam.__file__}, not from this "
+        "checkout's platforms/ (run ./Allwmake)")
     return os.environ
 
 

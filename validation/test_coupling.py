@@ -5,13 +5,13 @@
    weighted friction (3.3) and table 3's constant segregation and
    diffusion, from a 50:50 mix.  At steady state phi^s is Gray & Chugunov's
    (5.8) with phibar = 0.5, and I(z) and u(z) follow (6.3) and the ODE
-   (6.5) (validation/exact/stratified.py): L2 < 2 %.
+   (6.5) (python/granularfoam/exact/stratified.py): L2 < 2 %.
 2. Figure 9 (section 6.3): tutorials/segregationColumn, Trewhela's
    segregation (6.8a) and Utter-Behringer diffusion (6.8b) in a periodic
    layer at 25 degrees, R = 1.5, h = 30 d^s, for phibar = 0, 0.3, 0.5, 0.7
    and 1.  With C = 0, phi^s(z) against the exact solution (6.10)-(6.11)
    with K from phibar, and u(z) against the ODE (6.14)
-   (validation/exact/trewhela.py): L2 < 3 %.  With table 2's C = 0.2712
+   (python/granularfoam/exact/trewhela.py): L2 < 3 %.  With table 2's C = 0.2712
    (no closed form) against the same steady ODE with C solved by shooting;
    reported, and held to the same 3 %.
 
@@ -28,7 +28,7 @@ import pytest
 
 from cases import (RESULTS, edit, foam, fresh_case, last_two, profiles,
                    run_case, write_results)
-from exact import errors, stratified, trewhela
+from granularfoam.exact import errors, stratified, trewhela
 
 pytestmark = pytest.mark.validation
 

@@ -1,4 +1,4 @@
-"""Unit tier: the exact solutions of validation/exact against the numbers
+"""Unit tier: the exact solutions of python/granularfoam/exact against the numbers
 the paper states (sections 2.1, 5.2, 5.5 and ERRATA)."""
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exact import bagnold, errors, grayChugunov, rheology
+from granularfoam.exact import bagnold, errors, grayChugunov, rheology
 
 pytestmark = pytest.mark.unit
 

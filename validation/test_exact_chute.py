@@ -1,4 +1,4 @@
-"""Unit tier: the chute solutions of validation/exact/chute.py (section 5.6
+"""Unit tier: the chute solutions of python/granularfoam/exact/chute.py (section 5.6
 travelling front, appendix A shocks) against quadratures of the Bagnold
 profile (5.4) and the printed closed forms, tables 1 and 3."""
 import math
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exact import bagnold, chute, grayChugunov, rheology
+from granularfoam.exact import bagnold, chute, grayChugunov, rheology
 
 pytestmark = pytest.mark.unit
 

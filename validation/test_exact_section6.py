@@ -1,5 +1,5 @@
-"""Unit tier: the exact solutions of section 6 (validation/exact/stratified.py
-for section 6.1 and figure 7, validation/exact/trewhela.py for section 6.3
+"""Unit tier: the exact solutions of section 6 (python/granularfoam/exact/stratified.py
+for section 6.1 and figure 7, python/granularfoam/exact/trewhela.py for section 6.3
 and figure 9) against hand-derived numbers and independent computations."""
 import math
 from dataclasses import replace
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from exact import bagnold, rheology, stratified, trewhela
+from granularfoam.exact import bagnold, rheology, stratified, trewhela
 
 pytestmark = pytest.mark.unit
 

@@ -1,11 +1,11 @@
 """Unit tier: the exact solution of a layer between sidewalls
-(validation/exact/sidewall.py, (SW1)-(SW2))."""
+(python/granularfoam/exact/sidewall.py, (SW1)-(SW2))."""
 import math
 
 import numpy as np
 import pytest
 
-from exact import bagnold, rheology, sidewall
+from granularfoam.exact import bagnold, rheology, sidewall
 
 pytestmark = pytest.mark.unit
 

@@ -1,4 +1,4 @@
-"""The steady tridisperse solution of validation/exact/tridisperse.py: its
+"""The steady tridisperse solution of python/granularfoam/exact/tridisperse.py: its
 reduction to Gray & Chugunov's (5.8), the zero-net-flux balance of (2.13)
 and (2.15) as printed, the depth averages, (2.10), and bad input."""
 import dataclasses
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from exact import grayChugunov, trewhela, tridisperse
+from granularfoam.exact import grayChugunov, trewhela, tridisperse
 
 pytestmark = pytest.mark.unit
 

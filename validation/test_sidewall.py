@@ -5,7 +5,7 @@ The periodic layer of test_verification.py (table 1, zeta = 24 deg,
 h = 5 mm under 1 mm of air, 50 cells over h, from rest) with the Coulomb
 friction of walls W = 3 cm apart, mu_w = 0.25 (Jop, Forterre & Pouliquen
 2005), to 2 s with the implicit viscous stress (4 correctors, Delta t at
-most 3e-4 s), against (SW1)-(SW2) of validation/exact/sidewall.py: the
+most 3e-4 s), against (SW1)-(SW2) of python/granularfoam/exact/sidewall.py: the
 friction mu(z) = tan(zeta) - mu_w (h - z)/W goes from 0.404 at the base
 (> mu_s = 0.342: the whole layer flows) to tan(zeta) at the surface, and
 the surface moves 36 % slower than Bagnold's (5.4).  Numbers and figure:
@@ -21,8 +21,8 @@ import pytest  # noqa: E402
 
 from cases import (fresh_case, last_two, profiles, run_case,  # noqa: E402
                    set_entry, sidewall_friction, write_results)
-from exact import bagnold, errors, sidewall  # noqa: E402
-from exact.rheology import TABLE1  # noqa: E402
+from granularfoam.exact import bagnold, errors, sidewall  # noqa: E402
+from granularfoam.exact.rheology import TABLE1  # noqa: E402
 
 pytestmark = pytest.mark.validation
 

@@ -21,7 +21,7 @@ import pytest  # noqa: E402
 
 from cases import (RESULTS, fresh_case, last_two, profiles,  # noqa: E402
                    run_case, set_entry, write_results)
-from exact import bagnold, errors, grayChugunov  # noqa: E402
+from granularfoam.exact import bagnold, errors, grayChugunov  # noqa: E402
 
 pytestmark = pytest.mark.validation
 

@@ -1,6 +1,6 @@
 """Three grain sizes: tutorials/tridisperseColumn at 30 cells
 over h, run 30 s to its steady state, against the steady solution of
-(2.13) and (2.15) (validation/exact/tridisperse.py), for the tutorial's
+(2.13) and (2.15) (python/granularfoam/exact/tridisperse.py), for the tutorial's
 equal mix and an unequal one.
 
 Asserted for each run:
@@ -26,7 +26,7 @@ import pytest
 
 from cases import (RESULTS, entries, foam, fresh_case, grain_profiles,
                    last_two, log_reports, write_results)
-from exact import errors, tridisperse
+from granularfoam.exact import errors, tridisperse
 from squareDrum.post import function_table
 
 pytestmark = pytest.mark.validation

@@ -21,7 +21,7 @@ import pytest  # noqa: E402
 
 from cases import (fresh_case, last_two, profiles, run_case,  # noqa: E402
                    set_entry, times, volumes, write_results)
-from exact import bagnold, errors, grayChugunov  # noqa: E402
+from granularfoam.exact import bagnold, errors, grayChugunov  # noqa: E402
 
 pytestmark = pytest.mark.validation
 

@@ -5,7 +5,7 @@ frictional feedback (-monodisperse: mu_s^l = mu_s, the flow of section 5),
 from the same stratified inflow (the figure-7 solution).  Checked:
 
 1. the inflow: the boundary conditions' (6.5) velocity and (5.8)
-   composition against validation/exact/stratified.py (scipy) to 1e-6;
+   composition against python/granularfoam/exact/stratified.py (scipy) to 1e-6;
 2. the front: with feedback, the large grains segregated to the surface
    reach the front and form a large-rich front region (phi^s < 0.2 within
    2 cm of the front), behind a breaking size-segregation wave where the
@@ -33,7 +33,7 @@ import pytest
 from bulbousHead import post
 from cases import RESULTS, fresh_case, write_results
 from chute import post as chute
-from exact import stratified
+from granularfoam.exact import stratified
 
 pytestmark = pytest.mark.validation
 

@@ -4,7 +4,7 @@ section 5 of Barker et al. (2021): figures 2-6.
 Reads the ascii fields of the solver's time directories, maps them onto
 the (z, x) grid of the single blockMesh block, extracts the free surface,
 the front and the trapped air, and draws the paper's figures against the
-exact solutions of validation/exact.  Used by validation/chute/test_chute.py
+exact solutions of python/granularfoam/exact.  Used by validation/chute/test_chute.py
 (numbers) and as a script (figures):
 
     cd validation && /usr/bin/python3 -m chute.post <case> [--out DIR]
@@ -32,7 +32,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import colors  # noqa: E402
 
 from cases import foam, profiles  # noqa: E402
-from exact import bagnold, chute, errors, grayChugunov  # noqa: E402
+from granularfoam.exact import bagnold, chute, errors, grayChugunov  # noqa: E402
 
 ZETA = bagnold.ZETA                 # 24 degrees
 T3 = grayChugunov.TABLE3            # f_sl = 7e-3, D_sl = 1e-6, h = 5e-3

@@ -23,7 +23,7 @@ import pytest
 
 from cases import RESULTS, foam, fresh_case, set_entry, write_results
 from chute import post
-from exact import chute as exact_chute, grayChugunov
+from granularfoam.exact import chute as exact_chute, grayChugunov
 
 pytestmark = pytest.mark.validation
 

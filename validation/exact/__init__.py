@@ -1,1 +1,0 @@
-"""Exact solutions of Barker et al. (2021) used by the validation tests."""
