@@ -14,8 +14,9 @@ by its mesh, correctors and the settings that differ from the tutorial's
 (N50_30correctors, N50_30correctors_etaMax1000), figure10, figure11 and the
 lobes plot, and its numbers into drum.json; with several cases also
 settings.png (phi^s and the shear rate of each at its last common written
-times); with --readme README the runs of drum.json are rendered into that
-README between its markers.
+times); with --readme README the runs of OUT/drum.json are rendered into
+that README between its markers named after OUT's folder
+(<!-- drum results: NAME --> ... <!-- end of drum results: NAME -->).
 """
 import argparse
 import json
@@ -197,8 +198,10 @@ def relative_speed(f, xc, yc, omega=-2 * math.pi / PERIOD):
 
 def sample_rings(case):
     """Sample the circles of system/ringsDict on every written time (by
-    OpenFOAM's postProcess, on the moved meshes), once."""
-    if not (Path(case) / "postProcessing" / "rings").is_dir():
+    OpenFOAM's postProcess, on the moved meshes), again whenever the latest
+    written time has no samples (a run continued since)."""
+    rings = Path(case) / "postProcessing" / "rings"
+    if not (rings / time_names(case)[-1]).is_dir():
         foam(case, "postProcess", "-dict", "system/ringsDict", "-fields",
              "(alpha.small alpha.air I)")
 
@@ -491,8 +494,8 @@ def figure_lobes(case, out):
     _save(fig, out)
 
 
-README_BEGIN = "<!-- drum results: validation/squareDrum/post.py --readme -->"
-README_END = "<!-- end of drum results -->"
+README_BEGIN = "<!-- drum results: {} -->"
+README_END = "<!-- end of drum results: {} -->"
 
 
 def results_table(numbers):
@@ -536,12 +539,14 @@ def results_table(numbers):
     return "\n".join(lines)
 
 
-def write_readme(path, numbers):
-    """Replace the table between the markers of the drum README."""
+def write_readme(path, numbers, name):
+    """Replace the table between the markers of the drum README named
+    name (the results folder's name: measured, etaMax, ...)."""
     text = path.read_text()
-    i, j = text.find(README_BEGIN), text.find(README_END)
-    assert 0 <= i < j, f"no drum results markers in {path}"
-    path.write_text(text[:i + len(README_BEGIN)] + "\n\n"
+    begin, end = README_BEGIN.format(name), README_END.format(name)
+    i, j = text.find(begin), text.find(end)
+    assert 0 <= i < j, f"no drum results markers {begin} in {path}"
+    path.write_text(text[:i + len(begin)] + "\n\n"
                     + results_table(numbers) + "\n\n" + text[j:])
 
 
@@ -576,7 +581,7 @@ def main(argv=None):
     data.update(numbers)
     path.write_text(json.dumps(data, indent=2) + "\n")
     if args.readme:
-        write_readme(args.readme, data)
+        write_readme(args.readme, data, out.name)
     print(json.dumps(numbers, indent=2))
 
 
