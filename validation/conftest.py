@@ -37,9 +37,17 @@ def foam_env():
         "the sourced environment belongs to another checkout: "
         f"{os.environ['GSF_PROJECT_DIR']}")
     import granularfoam
-    assert PROJECT / "platforms" in Path(granularfoam.__file__).resolve().parents, (
-        f"granularfoam imported from {granularfoam.__file__}, not from this "
-        "checkout's platforms/ (run ./Allwmake)")
+    installed = Path(granularfoam.__file__).resolve().parent
+    assert installed.parent.parent.parent.name == "platforms", (
+        f"granularfoam imported from {installed}, not from a platforms/ "
+        "folder (run ./Allwmake)")
+    sources = PROJECT / "python" / "granularfoam"
+    stale = [str(f.relative_to(sources)) for f in sources.rglob("*.py")
+             if not (installed / f.relative_to(sources)).is_file()
+             or (installed / f.relative_to(sources)).read_bytes()
+             != f.read_bytes()]
+    assert not stale, (f"granularfoam in {installed} differs from this "
+                       f"checkout's python/ in {stale} (run ./Allwmake)")
     return os.environ
 
 
