@@ -47,13 +47,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
+from granularfoam.foamio import (cell_centres, edit, read_field, run as foam,
+                                 set_entry, time_names)
+
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "validation"))
-
-import numpy as np  # noqa: E402
-
-from cases import edit, foam, set_entry  # noqa: E402
-from chute.post import cell_centres, read_field, time_names  # noqa: E402
 
 WORK = ROOT / "bench" / "work" / "harness"
 RESULTS = ROOT / "bench" / "coupling.json"
@@ -515,9 +514,9 @@ def store(entries, command):
 def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     """The chute tutorial from rest to end_time, serial, with the coupling
     (and, if given, maxAlphaSubCycles and maxDeltaT, then the edits); the
-    steady outflow against the exact solutions (validation/chute/post.py)
+    steady outflow against the exact solutions (granularfoam.post.chute)
     and the cost."""
-    from chute.post import outflow
+    from granularfoam.post.chute import outflow
     tag = "_".join(filter(None, [
         coupling, f"sub{sub_cycles}" if sub_cycles is not None else "",
         f"dt{max_delta_t:g}" if max_delta_t else "",
@@ -582,7 +581,7 @@ def store_whole(entries, command):
         "a coupling (bench/harness chute): steps, CPU seconds, pressure "
         "solutions per step, and the outflow at the end against Bagnold "
         "(5.4), Gray & Chugunov (5.8) and (5.10) with its change over the "
-        "last written second (validation/chute/post.py outflow).",
+        "last written second (granularfoam.post.chute outflow).",
         lambda e: (e["coupling"], e["end_time"], e["max_alpha_sub_cycles"],
                    e["max_delta_t"], tuple(e["edits"])),
         entries, command)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from cases import edit, run, small_drum
-from chute.post import read_field
+from granularfoam.foamio import read_field
 
 pytestmark = pytest.mark.smoke
 

@@ -28,7 +28,7 @@ import pytest
 from cases import (NUMBER, edit, foam, foam_output, fresh_case, log_reports,
                    run, small_drum, volumes)
 from conftest import PROJECT, executable
-from chute.post import read_field
+from granularfoam.foamio import read_field
 
 pytestmark = pytest.mark.smoke
 

@@ -21,8 +21,8 @@ import pytest
 
 from cases import (RESULTS, edit, foam, foam_output, fresh_case, volumes,
                    write_results)
-from chute.post import read_field
-from squareDrum.post import function_table
+from granularfoam.foamio import read_field
+from granularfoam.foamio import function_table
 
 pytestmark = pytest.mark.smoke
 

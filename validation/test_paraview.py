@@ -30,7 +30,7 @@ import pytest
 from PIL import Image
 
 from cases import foam, fresh_case, small_drum
-from chute.post import parameters, read_field, time_names
+from granularfoam.post.chute import parameters, read_field, time_names
 from conftest import committed_copy, executable
 
 pytestmark = pytest.mark.smoke

@@ -14,7 +14,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from cases import foam, small_drum
-from chute.post import read_field
+from granularfoam.foamio import read_field
 from conftest import executable
 
 pytestmark = pytest.mark.smoke

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from cases import foam, fresh_case, log_reports
-from chute.post import read_field
+from granularfoam.foamio import read_field
 
 pytestmark = pytest.mark.smoke
 

@@ -15,8 +15,8 @@ import pytest
 
 from cases import (NUMBER, RESULTS, edit, foam, foam_output, fresh_case, run,
                    set_decomposition, small_drum, write_results)
-from chute.post import cell_centres, read_field
-from squareDrum import post
+from granularfoam.foamio import cell_centres, read_field
+from granularfoam.post import drum as post
 
 pytestmark = pytest.mark.smoke
 

@@ -27,7 +27,7 @@ import pytest
 from cases import (RESULTS, entries, foam, fresh_case, grain_profiles,
                    last_two, log_reports, write_results)
 from granularfoam.exact import errors, tridisperse
-from squareDrum.post import function_table
+from granularfoam.foamio import function_table
 
 pytestmark = pytest.mark.validation
 

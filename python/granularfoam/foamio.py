@@ -1,13 +1,167 @@
-"""Readers of what OpenFOAM wrote: dictionary entries (foamDictionary) and
-the output of the sets, volFieldValue and similar function objects in
-postProcessing/.  Every reader fails (an exception) on a missing output,
-never returns nothing."""
+"""Readers of what OpenFOAM wrote: the ascii fields of the time
+directories, dictionary entries (foamDictionary, or the numeric entries of
+a plain dictionary), and the output of the sets, volFieldValue and similar
+function objects in postProcessing/; and `run`, an OpenFOAM tool in a case.
+Every reader fails (an exception) on a missing output, never returns
+nothing."""
+import gzip
 import re
 import subprocess
+from pathlib import Path
 
 import numpy as np
 
 from .exact import errors
+
+_NCOMP = {"scalar": 1, "vector": 3, "sphericalTensor": 1, "symmTensor": 6,
+          "tensor": 9}
+
+
+def run(case, *cmd, timeout=3600):
+    """Run the command cmd (an OpenFOAM tool and its arguments) in case;
+    return its standard output.  A non-zero exit status raises, with the
+    end of the tool's output."""
+    res = subprocess.run(list(cmd), cwd=case, capture_output=True, text=True,
+                         timeout=timeout)
+    if res.returncode != 0:
+        raise RuntimeError(
+            f"{' '.join(cmd)} failed in {case} (exit {res.returncode}):\n"
+            + (res.stdout + res.stderr)[-3000:])
+    return res.stdout
+
+
+def set_entry(case, dictionary, entry, value):
+    """foamDictionary -entry entry -set value on case/dictionary."""
+    run(case, "foamDictionary", "-entry", entry, "-set", str(value),
+        dictionary)
+
+
+def edit(path, edits, flags=0):
+    """Apply (regex, replacement) pairs to the file path in turn, each to
+    its first match; a pattern that does not match is an assertion
+    failure."""
+    text = path.read_text()
+    for pattern, replacement in edits:
+        text, n = re.subn(pattern, replacement, text, count=1, flags=flags)
+        assert n == 1, f"{pattern!r} not in {path}"
+    path.write_text(text)
+
+
+def read_text(path):
+    """Text of an OpenFOAM file, plain or .gz; assertion if absent."""
+    path = Path(path)
+    if not path.is_file() and Path(str(path) + ".gz").is_file():
+        with gzip.open(str(path) + ".gz", "rt") as f:
+            return f.read()
+    assert path.is_file(), f"no field file {path}"
+    return path.read_text()
+
+
+def parameters(case, dictionary):
+    """Numeric entries of the plain dictionary case/system/<dictionary>
+    (e.g. the tutorials' chuteParameters, drumParameters): {name: float}."""
+    text = read_text(Path(case) / "system" / dictionary)
+    text = re.sub(r"//.*", "", text)
+    return {k: float(v) for k, v in re.findall(
+        r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+
+
+def n_cells(case):
+    """Number of cells, from the note of constant/polyMesh/owner."""
+    text = read_text(Path(case) / "constant" / "polyMesh" / "owner")
+    m = re.search(r"nCells:\s*(\d+)", text)
+    assert m, f"no nCells in the owner file of {case}"
+    return int(m.group(1))
+
+
+def read_field(case, time_name, name):
+    """internalField of the ascii volField case/time_name/name: array (n,)
+    for scalars, (n, k) for vectors (k = 3) and tensors; `uniform` values
+    are repeated over the n cells of the mesh."""
+    path = Path(case) / str(time_name) / name
+    text = read_text(path)
+    assert re.search(r"format\s+ascii\s*;", text), f"{path} is not ascii"
+    start = text.find("internalField")
+    assert start >= 0, f"no internalField in {path}"
+    rest = text[start + len("internalField"):]
+    m = re.match(r"\s*uniform\s+([^;]*);", rest)
+    if m:
+        value = np.array(m.group(1).replace("(", " ").replace(")", " ")
+                         .split(), dtype=float)
+        n = n_cells(case)
+        return np.full(n, value[0]) if value.size == 1 \
+            else np.tile(value, (n, 1))
+    m = re.match(r"\s*nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", rest)
+    assert m, f"cannot parse the internalField of {path}"
+    kind, n = m.group(1), int(m.group(2))
+    assert kind in _NCOMP, f"{path}: unknown List<{kind}>"
+    k = _NCOMP[kind]
+    if n == 0:
+        return np.empty((0,) if k == 1 else (0, k))
+    body = rest[m.end():]
+    # The list closes at the first ')' of a scalar list, or at the first
+    # ')' that follows another ')' (only blanks between) for vectors.
+    end = re.search(r"\)" if kind == "scalar" else r"\)\s*\)", body)
+    assert end, f"{path}: unterminated internalField list"
+    body = body[:end.end() - 1]
+    values = np.array(body.replace("(", " ").replace(")", " ").split(),
+                      dtype=float)
+    assert values.size == n * k, (
+        f"{path}: {values.size} numbers for {n} {kind} values")
+    return values if k == 1 else values.reshape(n, k)
+
+
+def cell_centres(case, time_name):
+    """Cell centres (n, 3): field C of `postProcess -func writeCellCentres`
+    (run when time_name/C is missing; it writes into the case)."""
+    case = Path(case)
+    if not (case / str(time_name) / "C").is_file():
+        run(case, "postProcess", "-func", "writeCellCentres",
+             "-time", str(time_name))
+    return read_field(case, time_name, "C")
+
+
+def time_names(case):
+    """Sorted names of the time directories of case holding alpha.air
+    (plain or .gz)."""
+    case = Path(case)
+    out = []
+    for d in case.iterdir():
+        try:
+            float(d.name)
+        except ValueError:
+            continue
+        if d.is_dir() and ((d / "alpha.air").is_file()
+                           or (d / "alpha.air.gz").is_file()):
+            out.append(d.name)
+    return sorted(out, key=float)
+
+
+def table(path):
+    """Rows of a function object's .dat file (comments '#' skipped; 'nan'
+    read as NaN): array (rows, columns)."""
+    rows = [line.split() for line in read_text(path).splitlines()
+            if line.strip() and not line.startswith("#")]
+    assert rows, f"{path} holds no data"
+    return np.array(rows, dtype=float)
+
+
+def function_table(case, function, name):
+    """Rows of case/postProcessing/function/<start>/name over all start
+    times (restarts): each start's rows up to the next start."""
+    base = Path(case) / "postProcessing" / function
+    assert base.is_dir(), f"no {base}"
+    starts = sorted((d for d in base.iterdir()
+                     if d.is_dir() and (d / name).is_file()),
+                    key=lambda d: float(d.name))
+    assert starts, f"no {name} in {base}"
+    parts = []
+    for k, d in enumerate(starts):
+        a = table(d / name)
+        if k + 1 < len(starts):
+            a = a[a[:, 0] < float(starts[k + 1].name) + 1e-9]
+        parts.append(a)
+    return np.concatenate(parts)
 
 
 def entries(case, dictionary, keys):

@@ -30,9 +30,9 @@ import time
 import numpy as np
 import pytest
 
-from bulbousHead import post
+from granularfoam.post import bulbousHead as post
 from cases import RESULTS, fresh_case, write_results
-from chute import post as chute
+from granularfoam.post import chute as chute
 from granularfoam.exact import stratified
 
 pytestmark = pytest.mark.validation

@@ -22,7 +22,7 @@ import time
 import pytest
 
 from cases import RESULTS, foam, fresh_case, set_entry, write_results
-from chute import post
+from granularfoam.post import chute as post
 from granularfoam.exact import chute as exact_chute, grayChugunov
 
 pytestmark = pytest.mark.validation

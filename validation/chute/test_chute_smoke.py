@@ -9,9 +9,9 @@ import pytest
 
 from cases import (edit, foam, foam_output, fresh_case, set_decomposition,
                    set_entry)
-from chute import post
+from granularfoam.post import chute as post
 from granularfoam.exact import bagnold, chute as exact_chute
-from squareDrum import post as drum_post
+from granularfoam.post import drum as drum_post
 
 pytestmark = pytest.mark.smoke
 

@@ -12,13 +12,10 @@ The cases are the chute tutorial with the top's p set (SETUP below).
 import argparse
 import json
 import re
-import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-from chute.post import _read_text, outflow  # noqa: E402
+from granularfoam.foamio import read_text
+from granularfoam.post.chute import outflow
 
 
 SETUP = ("for P in 1e-3 1e-6; do cp -r tutorials/chute p$P && "
@@ -30,7 +27,7 @@ SETUP = ("for P in 1e-3 1e-6; do cp -r tutorials/chute p$P && "
 def top_pressure(case):
     """p of the top patch in case/0.orig/p_rgh."""
     m = re.search(r"\btop\s*\{[^}]*\bp\s+uniform\s+([-+0-9.eE]+)\s*;",
-                  _read_text(Path(case) / "0.orig" / "p_rgh"))
+                  read_text(Path(case) / "0.orig" / "p_rgh"))
     assert m, f"no top pressure in {case}/0.orig/p_rgh"
     return float(m.group(1))
 

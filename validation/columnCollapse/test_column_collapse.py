@@ -34,7 +34,7 @@ import numpy as np
 import pytest
 
 from cases import RESULTS, fresh_case, set_entry, write_results
-from columnCollapse import post
+from granularfoam.post import columnCollapse as post
 
 pytestmark = pytest.mark.validation
 

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from cases import edit, foam, fresh_case, set_decomposition
-from chute.post import read_field, cell_centres
-from squareDrum import post
+from granularfoam.foamio import read_field, cell_centres
+from granularfoam.post import drum as post
 
 pytestmark = pytest.mark.smoke
 

@@ -7,11 +7,12 @@ free-surface angle, the peak speed relative to the drum), the phase volumes
 and bounds, the `rings` sets (phi^s on circles about the axis, sampled by
 OpenFOAM) and the ascii fields and moved points of the time directories.
 
-    /usr/bin/python3 validation/squareDrum/post.py CASE [CASE ...] [--out DIR] [--readme README]
+    /usr/bin/python3 -m granularfoam.post.drum CASE [CASE ...] [--out DIR] [--readme README]
 
 writes figure13.png (J(t) of every case given), and for every case, keyed
-by its mesh, correctors and the settings that differ from the tutorial's
-(N50_30correctors, N50_30correctors_etaMax1000), figure10, figure11 and the
+by its mesh, correctors, cap and the advection scheme when it is not the
+tutorial's (N50_30correctors_etaMax3000, N50_30correctors_etaMax300_linear),
+figure10, figure11 and the
 lobes plot, and its numbers into drum.json; with several cases also
 settings.png (phi^s and the shear rate of each at its last common written
 times); with --readme README the runs of OUT/drum.json are rendered into
@@ -22,27 +23,22 @@ import argparse
 import json
 import math
 import re
-import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-import numpy as np  # noqa: E402
-import matplotlib  # noqa: E402
+import numpy as np
+import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from scipy.signal import find_peaks  # noqa: E402
 
-from cases import foam  # noqa: E402
-from chute.post import _read_text, read_field, time_names  # noqa: E402
-from squareDrum.tension import step_table  # noqa: E402
+from ..foamio import (function_table, parameters as _parameters,  # noqa: E402
+                      read_field, read_text, run, time_names)
+from .drumTension import step_table  # noqa: E402
 
 DPI = 150
 PERIOD = 10.0                   # s, one revolution at Omega = -pi/5
 I1 = 0.01886                    # table 4: below it the law creeps
-ETA_MAX = 300.0                 # Pa s, the tutorial's cap (4.12)
 ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
@@ -55,15 +51,12 @@ FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
 
 def parameters(case):
     """Numeric entries of case/system/drumParameters (N, L, etaMax, ...)."""
-    text = _read_text(Path(case) / "system" / "drumParameters")
-    text = re.sub(r"//.*", "", text)
-    return {k: float(v) for k, v in re.findall(
-        r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+    return _parameters(case, "drumParameters")
 
 
 def n_correctors(case):
     """nCorrectors of the PIMPLE dictionary of case/system/fvSolution."""
-    text = re.sub(r"//.*", "", _read_text(Path(case) / "system" / "fvSolution"))
+    text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
     m = re.search(r"\bnCorrectors\s+(\d+)\s*;", text)
     assert m, f"no nCorrectors in {case}/system/fvSolution"
     return int(m.group(1))
@@ -72,20 +65,18 @@ def n_correctors(case):
 def alpha_scheme(case):
     """The scheme of div(phi,alpha) in case/system/fvSchemes (the advection
     of the phases), e.g. vanLeer."""
-    text = re.sub(r"//.*", "", _read_text(Path(case) / "system" / "fvSchemes"))
+    text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSchemes"))
     m = re.search(r"div\(phi,alpha\)\s+Gauss\s+([^;]+);", text)
     assert m, f"no div(phi,alpha) in {case}/system/fvSchemes"
     return m.group(1).strip()
 
 
 def label(case):
-    """The key of a run in drum.json and its figures: N and correctors, and
-    the settings that differ from the tutorial's (etaMax, the advection
-    scheme)."""
+    """The key of a run in drum.json and its figures: N, correctors and
+    etaMax, and the advection scheme when it is not the tutorial's."""
     par = parameters(case)
-    key = f"N{int(par['N'])}_{n_correctors(case)}correctors"
-    if par["etaMax"] != ETA_MAX:
-        key += f"_etaMax{par['etaMax']:g}"
+    key = (f"N{int(par['N'])}_{n_correctors(case)}correctors"
+           f"_etaMax{par['etaMax']:g}")
     if alpha_scheme(case) != ALPHA_SCHEME:
         key += "_" + re.sub(r"\W+", "", alpha_scheme(case))
     return key
@@ -101,33 +92,6 @@ def body_shear_rate(case, names):
         air = read_field(case, name, "alpha.air")
         out.append(float(np.median(shear[air < 0.5])))
     return out
-
-
-def _table(path):
-    """Rows of a function object's .dat file (comments '#' skipped; 'nan'
-    read as NaN): array (rows, columns)."""
-    rows = [line.split() for line in _read_text(path).splitlines()
-            if line.strip() and not line.startswith("#")]
-    assert rows, f"{path} holds no data"
-    return np.array(rows, dtype=float)
-
-
-def function_table(case, function, name):
-    """Rows of case/postProcessing/function/<start>/name over all start
-    times (restarts): each start's rows up to the next start."""
-    base = Path(case) / "postProcessing" / function
-    assert base.is_dir(), f"no {base}"
-    starts = sorted((d for d in base.iterdir()
-                     if d.is_dir() and (d / name).is_file()),
-                    key=lambda d: float(d.name))
-    assert starts, f"no {name} in {base}"
-    parts = []
-    for k, d in enumerate(starts):
-        a = _table(d / name)
-        if k + 1 < len(starts):
-            a = a[a[:, 0] < float(starts[k + 1].name) + 1e-9]
-        parts.append(a)
-    return np.concatenate(parts)
 
 
 def monitor(case):
@@ -151,7 +115,7 @@ def bounds(case):
 
 def points(case, time_name):
     """The moved mesh points of a time (n, 3)."""
-    text = _read_text(Path(case) / str(time_name) / "polyMesh" / "points")
+    text = read_text(Path(case) / str(time_name) / "polyMesh" / "points")
     body = text[text.index("FoamFile"):]
     body = body[body.index("}") + 1:]
     m = re.search(r"(\d+)\s*\(", body)
@@ -202,7 +166,7 @@ def sample_rings(case):
     written time has no samples (a run continued since)."""
     rings = Path(case) / "postProcessing" / "rings"
     if not (rings / time_names(case)[-1]).is_dir():
-        foam(case, "postProcess", "-dict", "system/ringsDict", "-fields",
+        run(case, "postProcess", "-dict", "system/ringsDict", "-fields",
              "(alpha.small alpha.air I)")
 
 
@@ -575,7 +539,7 @@ def main(argv=None):
             figure10(case, out / f"figure10_{key}.png")
         figure_lobes(case, out / f"lobes_{key}.png")
     numbers = _json_safe(numbers)
-    # Other entries of drum.json (the tension windows of tension.py) stay
+    # Other entries of drum.json (the tension windows of drumTension) stay
     path = out / "drum.json"
     data = json.loads(path.read_text()) if path.exists() else {}
     data.update(numbers)

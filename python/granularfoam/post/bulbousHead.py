@@ -6,15 +6,14 @@ fraction in the head; draws figure 8 (phi^s and log10 I near the front) and
 the front and head histories of the coupled run against the run without
 frictional feedback (-monodisperse).
 
-    /usr/bin/python3 validation/bulbousHead/post.py <case> [<monodisperse>]
+    /usr/bin/python3 -m granularfoam.post.bulbousHead <case> [<monodisperse>]
         [--time 5.2] [--out figures]
 
 The field readers and the free-surface measures are those of the chute
-(validation/chute/post.py).
+(granularfoam.post.chute).
 """
 import argparse
 import json
-import sys
 from pathlib import Path
 
 import matplotlib
@@ -22,8 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from chute import post as chute  # noqa: E402
+from . import chute  # noqa: E402
 
 # The head: this far behind the front.  The bulge of the coupled run forms
 # at the rear of the large-rich region, by the breaking wave, 15-22 cm behind

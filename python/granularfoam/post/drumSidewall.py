@@ -19,7 +19,7 @@ At every written time from --from on (the steady avalanche regime):
   a face) that holds the cell nearest the axis;
 - the surface inclination and the peak relative speed (the monitor).
 
-    /usr/bin/python3 validation/squareDrum/sidewall.py NOWALL WALL \\
+    /usr/bin/python3 -m granularfoam.post.drumSidewall NOWALL WALL \\
         [--from 10] [--out DIR]
 
 writes sidewall.json (means over the times, and every time) and
@@ -28,23 +28,19 @@ sidewall.png.
 import argparse
 import json
 import math
-import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-import numpy as np  # noqa: E402
-import matplotlib  # noqa: E402
+import numpy as np
+import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from scipy.interpolate import LinearNDInterpolator  # noqa: E402
 from scipy.ndimage import label  # noqa: E402
 
-from chute.post import time_names  # noqa: E402
-from squareDrum.post import (I1, _drum_axes, _save, centres,  # noqa: E402
-                             grid, monitor, parameters, relative_speed)
+from ..foamio import time_names  # noqa: E402
+from .drum import (I1, _drum_axes, _save, centres,  # noqa: E402
+                   grid, monitor, parameters, relative_speed)
 
 FRACTION = 0.25         # of the line's largest relative speed: the base
                         # of the flowing layer (the body creeps at 10-15 %

@@ -7,7 +7,7 @@ pressure (pGranular at its floor p_min) and the sign changes of that lowest
 pressure from one step to the next (a pressure that flips every step is a
 coupling that did not converge, not a physical tension).
 
-    /usr/bin/python3 validation/squareDrum/tension.py CASE --start 78.5542643977331778 \\
+    /usr/bin/python3 -m granularfoam.post.drumTension CASE --start 78.5542643977331778 \\
         --end 78.75 [--set PIMPLE.nCorrectors=30 ...] [--label NAME] [--out JSON]
 
 --set edits system/fvSolution (ENTRY=VALUE).  The window runs in
@@ -21,13 +21,9 @@ import shutil
 import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from cases import foam, set_entry  # noqa: E402
-from chute.post import read_field, time_names  # noqa: E402
+from ..foamio import read_field, run, set_entry, time_names
 
 GRAINS = 0.5
 P_FLOOR = 1e-6          # pGranular at or below this: the rheology saw none
@@ -64,7 +60,7 @@ def window(case, start, end, settings, label):
         set_entry(work, "system/controlDict", entry, value)
     for entry, value in settings:
         set_entry(work, "system/fvSolution", entry, value)
-    foam(work, "granularSegregationFoam", timeout=3600)
+    run(work, "granularSegregationFoam", timeout=3600)
     return work
 
 
@@ -105,7 +101,8 @@ def main(argv=None):
     work = window(args.case, args.start, args.end, settings, args.label)
     rows = step_table(work, time_names(work))
     out = summary(rows, settings)
-    out["command"] = ("validation/squareDrum/tension.py " + " ".join(
+    out["command"] = ("/usr/bin/python3 -m granularfoam.post.drumTension "
+                      + " ".join(
         argv if argv is not None else sys.argv[1:]))
     print(json.dumps(out, indent=1))
     if args.out:

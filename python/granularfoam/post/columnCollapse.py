@@ -12,30 +12,26 @@ sampled floor row and wall column (system/controlDict, function
 - volume change: the largest |V^g(t) - V^g(0)| / V^g(0) over the run;
 - deposit: the grain depth of every column of cells at the end [m].
 
-    /usr/bin/python3 validation/columnCollapse/post.py <case>... [--out DIR]
+    /usr/bin/python3 -m granularfoam.post.columnCollapse <case>... [--out DIR]
 
 prints them as JSON, each time series by sampled time; with --out, draws
 the front x_f(t), the height at the wall and the deposits of the cases
 into DIR/columnCollapse.png.  Cell centres come from `postProcess -func
-writeCellCentres` (chute/post.py), so the OpenFOAM environment must be
+writeCellCentres` (granularfoam.foamio), so the OpenFOAM environment must be
 sourced.
 """
 import argparse
 import json
-import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-import numpy as np  # noqa: E402
-import matplotlib  # noqa: E402
+import numpy as np
+import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from cases import profiles, times, volumes  # noqa: E402
-from chute import post as fields  # noqa: E402
+from ..foamio import profiles, read_field, times, volumes  # noqa: E402
+from . import chute as fields  # noqa: E402
 
 GRAINS = 0.5                # phi^g above this is "grains"
 STOP = 1e-3                 # [m] a front that moves less has stopped
@@ -72,8 +68,8 @@ def wall_height(case, time_name):
 
 def fastest_grains(case, time_name):
     """Largest |U| over the cells with phi^g > 1/2 [m/s]."""
-    g = fields.read_field(case, time_name, "alpha.grains")
-    U = fields.read_field(case, time_name, "U")
+    g = read_field(case, time_name, "alpha.grains")
+    U = read_field(case, time_name, "U")
     speed = np.linalg.norm(U[g > GRAINS], axis=1)
     assert speed.size, f"{case}/{time_name}: no cell with phi^g > 1/2"
     return float(speed.max())

@@ -4,35 +4,30 @@ section 5 of Barker et al. (2021): figures 2-6.
 Reads the ascii fields of the solver's time directories, maps them onto
 the (z, x) grid of the single blockMesh block, extracts the free surface,
 the front and the trapped air, and draws the paper's figures against the
-exact solutions of python/granularfoam/exact.  Used by validation/chute/test_chute.py
-(numbers) and as a script (figures):
+exact solutions of granularfoam.exact.  Used by the chute's tests
+(validation/chute, numbers) and as a script (figures):
 
-    cd validation && /usr/bin/python3 -m chute.post <case> [--out DIR]
-    /usr/bin/python3 validation/chute/post.py <case> [--out DIR]
+    /usr/bin/python3 -m granularfoam.post.chute <case> [--out DIR]
 
 Cell centres come from `postProcess -func writeCellCentres` (written into
 the case once per time), so the OpenFOAM environment (etc/openfoam.env)
 must be sourced unless the time directories already hold C.
 """
 import argparse
-import gzip
 import math
 import re
-import sys
 from pathlib import Path
 
-if __name__ == "__main__" and __package__ in (None, ""):
-    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-
-import numpy as np  # noqa: E402
-import matplotlib  # noqa: E402
+import numpy as np
+import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import colors  # noqa: E402
 
-from cases import foam, profiles  # noqa: E402
-from granularfoam.exact import bagnold, chute, errors, grayChugunov  # noqa: E402
+from ..exact import bagnold, chute, errors, grayChugunov  # noqa: E402
+from ..foamio import (cell_centres, parameters as _parameters,  # noqa: E402
+                      profiles, read_field, read_text, time_names)
 
 ZETA = bagnold.ZETA                 # 24 degrees
 T3 = grayChugunov.TABLE3            # f_sl = 7e-3, D_sl = 1e-6, h = 5e-3
@@ -41,79 +36,11 @@ GRAINS = 0.5                        # alpha.air below this is "grains"
 DPI = 150
 LETTERS = "abcdefghij"
 
-_NCOMP = {"scalar": 1, "vector": 3, "sphericalTensor": 1, "symmTensor": 6,
-          "tensor": 9}
 
 
 # --------------------------------------------------------------------------
 # Reading OpenFOAM output
 # --------------------------------------------------------------------------
-
-def _read_text(path):
-    """Text of an OpenFOAM file, plain or .gz; assertion if absent."""
-    path = Path(path)
-    if not path.is_file() and Path(str(path) + ".gz").is_file():
-        with gzip.open(str(path) + ".gz", "rt") as f:
-            return f.read()
-    assert path.is_file(), f"no field file {path}"
-    return path.read_text()
-
-
-def n_cells(case):
-    """Number of cells, from the note of constant/polyMesh/owner."""
-    text = _read_text(Path(case) / "constant" / "polyMesh" / "owner")
-    m = re.search(r"nCells:\s*(\d+)", text)
-    assert m, f"no nCells in the owner file of {case}"
-    return int(m.group(1))
-
-
-def read_field(case, time_name, name):
-    """internalField of the ascii volField case/time_name/name: array (n,)
-    for scalars, (n, k) for vectors (k = 3) and tensors; `uniform` values
-    are repeated over the n cells of the mesh."""
-    path = Path(case) / str(time_name) / name
-    text = _read_text(path)
-    assert re.search(r"format\s+ascii\s*;", text), f"{path} is not ascii"
-    start = text.find("internalField")
-    assert start >= 0, f"no internalField in {path}"
-    rest = text[start + len("internalField"):]
-    m = re.match(r"\s*uniform\s+([^;]*);", rest)
-    if m:
-        value = np.array(m.group(1).replace("(", " ").replace(")", " ")
-                         .split(), dtype=float)
-        n = n_cells(case)
-        return np.full(n, value[0]) if value.size == 1 \
-            else np.tile(value, (n, 1))
-    m = re.match(r"\s*nonuniform\s+List<(\w+)>\s*(\d+)\s*\(", rest)
-    assert m, f"cannot parse the internalField of {path}"
-    kind, n = m.group(1), int(m.group(2))
-    assert kind in _NCOMP, f"{path}: unknown List<{kind}>"
-    k = _NCOMP[kind]
-    if n == 0:
-        return np.empty((0,) if k == 1 else (0, k))
-    body = rest[m.end():]
-    # The list closes at the first ')' of a scalar list, or at the first
-    # ')' that follows another ')' (only blanks between) for vectors.
-    end = re.search(r"\)" if kind == "scalar" else r"\)\s*\)", body)
-    assert end, f"{path}: unterminated internalField list"
-    body = body[:end.end() - 1]
-    values = np.array(body.replace("(", " ").replace(")", " ").split(),
-                      dtype=float)
-    assert values.size == n * k, (
-        f"{path}: {values.size} numbers for {n} {kind} values")
-    return values if k == 1 else values.reshape(n, k)
-
-
-def cell_centres(case, time_name):
-    """Cell centres (n, 3): field C of `postProcess -func writeCellCentres`
-    (run through cases.foam when time_name/C is missing; it writes into
-    the case)."""
-    case = Path(case)
-    if not (case / str(time_name) / "C").is_file():
-        foam(case, "postProcess", "-func", "writeCellCentres",
-             "-time", str(time_name))
-    return read_field(case, time_name, "C")
-
 
 def _levels(v):
     """Distinct coordinates of v (sorted, clustered to a relative tolerance
@@ -159,35 +86,16 @@ def _place(values, iz, ix, nz, nx):
     return a
 
 
-def time_names(case):
-    """Sorted names of the time directories of case holding alpha.air
-    (plain or .gz)."""
-    case = Path(case)
-    out = []
-    for d in case.iterdir():
-        try:
-            float(d.name)
-        except ValueError:
-            continue
-        if d.is_dir() and ((d / "alpha.air").is_file()
-                           or (d / "alpha.air.gz").is_file()):
-            out.append(d.name)
-    return sorted(out, key=float)
-
-
 def parameters(case, dictionary="chuteParameters"):
     """Numeric entries of case/system/<dictionary> (the chute's: Lx, Lz, h,
     nx, ...)."""
-    text = _read_text(Path(case) / "system" / dictionary)
-    text = re.sub(r"//.*", "", text)
-    return {k: float(v) for k, v in re.findall(
-        r"^\s*(\w+)\s+([-+0-9.eE]+)\s*;", text, flags=re.M)}
+    return _parameters(case, dictionary)
 
 
 def frame_velocity(case, time_name):
     """x component of the inflow's frameVelocity recorded in U (0 when the
     case runs in the lab frame)."""
-    text = _read_text(Path(case) / str(time_name) / "U")
+    text = read_text(Path(case) / str(time_name) / "U")
     m = re.search(r"frameVelocity\s*\(\s*(\S+)\s+\S+\s+\S+\s*\)", text)
     return float(m.group(1)) if m else 0.0
 
@@ -885,4 +793,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    raise SystemExit(main())
