@@ -13,6 +13,7 @@ import shutil
 import pytest
 
 from cases import edit, run, sidewall_friction, small_drum
+from granularfoam.foamio import time_names
 
 pytestmark = pytest.mark.smoke
 
@@ -183,17 +184,6 @@ def base(foam_env):
                       write_interval="0.625", delta_t="1e-4")
 
 
-def _times(case):
-    out = []
-    for d in case.iterdir():
-        try:
-            float(d.name)
-        except ValueError:
-            continue
-        out.append(d.name)
-    return sorted(out)
-
-
 def _solve(case):
     res = run(["granularSegregationFoam"], case, timeout=120)
     return res.returncode, res.stdout + res.stderr
@@ -215,7 +205,7 @@ def test_refused(base, tmp_path, name, path, pattern, replacement, words):
     shutil.copytree(base, case)
     edit(case / path, [(pattern, replacement)], flags=re.S)
     before = {t: sorted(p.name for p in (case / t).iterdir())
-              for t in _times(case)}
+              for t in time_names(case, field=None)}
 
     _assert_refused(case, name, words, before)
 
@@ -269,7 +259,7 @@ def test_sidewall_refused(base, tmp_path, name, entries, words):
     shutil.copytree(base, case)
     sidewall_friction(case, **entries)
     before = {t: sorted(p.name for p in (case / t).iterdir())
-              for t in _times(case)}
+              for t in time_names(case, field=None)}
     _assert_refused(case, name, words, before)
 
 
@@ -285,5 +275,5 @@ def _assert_refused(case, name, words, before):
     missing = [w for w in words if w not in message]
     assert not missing, f"{name}: {missing} not in\n{message[:2000]}"
     after = {t: sorted(p.name for p in (case / t).iterdir())
-             for t in _times(case)}
+             for t in time_names(case, field=None)}
     assert after == before, f"{name}: fields written: {after}"

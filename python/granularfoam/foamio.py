@@ -121,9 +121,9 @@ def cell_centres(case, time_name):
     return read_field(case, time_name, "C")
 
 
-def time_names(case):
-    """Sorted names of the time directories of case holding alpha.air
-    (plain or .gz)."""
+def time_names(case, field="alpha.air"):
+    """Sorted names of the time directories of case holding field (plain
+    or .gz); with field None, of every time directory."""
     case = Path(case)
     out = []
     for d in case.iterdir():
@@ -131,8 +131,8 @@ def time_names(case):
             float(d.name)
         except ValueError:
             continue
-        if d.is_dir() and ((d / "alpha.air").is_file()
-                           or (d / "alpha.air.gz").is_file()):
+        if d.is_dir() and (field is None or (d / field).is_file()
+                           or (d / (field + ".gz")).is_file()):
             out.append(d.name)
     return sorted(out, key=float)
 

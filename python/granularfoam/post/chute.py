@@ -14,6 +14,7 @@ the case once per time), so the OpenFOAM environment (etc/openfoam.env)
 must be sourced unless the time directories already hold C.
 """
 import argparse
+import dataclasses
 import math
 import re
 from pathlib import Path
@@ -90,6 +91,17 @@ def parameters(case, dictionary="chuteParameters"):
     """Numeric entries of case/system/<dictionary> (the chute's: Lx, Lz, h,
     nx, ...)."""
     return _parameters(case, dictionary)
+
+
+def grain_diameter(case):
+    """d of the grains in case/constant/granularProperties (the chute's
+    grains share one d; table 1: 0.5 mm)."""
+    text = re.sub(r"//.*", "", read_text(
+        Path(case) / "constant" / "granularProperties"))
+    found = {float(v) for v in re.findall(r"\bd\s+([-+0-9.eE]+)\s*;", text)}
+    assert len(found) == 1, (
+        f"{case}: the grains' d are {sorted(found)}, not one value")
+    return found.pop()
 
 
 def frame_velocity(case, time_name):
@@ -254,6 +266,19 @@ def small_fraction(alpha_small, alpha_large, alpha_air=None):
     return np.ma.masked_array(np.where(mask, 0.0, phi), mask=mask)
 
 
+def mixed_thickness(case, time_name, band=(0.25, 0.75)):
+    """The grains' mixed thickness of every column at a time: the grain
+    volume per unit length (sum of phi^g dz) of the cells whose phi^s lies
+    within band.  Returns (x (nx,), thickness (nx,))."""
+    x, z, f = grid(case, time_name, ["alpha.air", "alpha.small",
+                                     "alpha.large"])
+    grains = f["alpha.small"] + f["alpha.large"]
+    phis = small_fraction(f["alpha.small"], f["alpha.large"],
+                          f["alpha.air"]).filled(0.0)
+    mixed = (f["alpha.air"] < GRAINS) & (phis > band[0]) & (phis < band[1])
+    return x, np.sum(np.where(mixed, grains, 0.0), axis=0) * _spacing(z)
+
+
 def downstream_phibar(h=T3.h, zeta=ZETA, phi0=PHI0):
     """Depth-averaged phi^s far downstream (5.10): the flux of the uniform
     inflow phi0 carried by the Bagnold profile (0.6744 for table 3)."""
@@ -264,9 +289,10 @@ def downstream_phibar(h=T3.h, zeta=ZETA, phi0=PHI0):
 
 def outflow(case, set_name="outlet", h=T3.h):
     """The steady outflow: the column sampled at the last time against
-    Bagnold (5.4), Gray & Chugunov (5.8) and (5.10), and its change since
-    the time sampled before.  Returns (numbers, arrays): numbers for the
-    results files, arrays (z, u, phis, Pe, phibar) for figure 4."""
+    Bagnold (5.4) with the case's d, Gray & Chugunov (5.8) and (5.10), and
+    its change since the time sampled before.  Returns (numbers, arrays):
+    numbers for the results files, arrays (z, u, phis, Pe, phibar) for
+    figure 4."""
     from scipy.optimize import brentq
     sampled = time_names(case)
     t_prev, t_end = sampled[-2], sampled[-1]
@@ -277,7 +303,7 @@ def outflow(case, set_name="outlet", h=T3.h):
     grains = prof["alpha.small"] + prof["alpha.large"]
 
     u = prof["U"][:, 0]
-    u_exact = bagnold.velocity(z[inside], h, ZETA)
+    u_exact = bagnold.velocity(z[inside], h, ZETA, d=grain_diameter(case))
     l2_u = errors.l2_relative(u[inside], u_exact)
 
     phis = small_fraction(prof["alpha.small"], prof["alpha.large"])
@@ -419,7 +445,7 @@ def figure2(runs, out):
     return {"path": _save(fig, out), "runs": results}
 
 
-def figure3(case, time_names, out, h=T3.h, f=T3.f_sl, phi0=PHI0):
+def figure3(case, time_names, out, h=T3.h, f=T3.f_sl, phi0=PHI0, d=None):
     """Figure 3: phi^s inside the grains (alpha.air < 0.5) at the given
     times, one panel each, vertically stretched; the last panel with Gray &
     Thornton's (2005) shocks (appendix A, dashed).  Returns {'path',
@@ -450,7 +476,7 @@ def figure3(case, time_names, out, h=T3.h, f=T3.f_sl, phi0=PHI0):
     # (free_surface of 1 - phi^s, air counted as 0 small grains)
     z_half = free_surface(z, 1.0 - np.ma.filled(phis, 0.0))
     xs = np.linspace(0.0, x[-1] + _spacing(x) / 2, 600)
-    lines = chute.shock_lines(xs, h, ZETA, f, phi0)
+    lines = chute.shock_lines(xs, h, ZETA, f, phi0, d=d)
     ax = axes[-1, 0]
     for zline, name in zip(lines, ("lower", "upper", "final")):
         ax.plot(xs, zline * 1e3, "k--", lw=1.0,
@@ -468,9 +494,10 @@ def figure3(case, time_names, out, h=T3.h, f=T3.f_sl, phi0=PHI0):
 
 
 def figure4(z, u, phis, out, h, Pe, phibar, zeta=ZETA,
-            where="the outlet"):
+            where="the outlet", d=None):
     """Figure 4: (a) sampled downslope velocity u(z) (circles) against the
-    Bagnold profile (5.4) of depth h, (b) sampled phi^s against Gray &
+    Bagnold profile (5.4) of depth h (grain diameter d, default table 1's),
+    (b) sampled phi^s against Gray &
     Chugunov (5.8)-(5.11) with Pe and phibar.  phis is NaN or masked in
     the air (small_fraction): those velocities are drawn grey and left out
     of the errors.  `where` names the sampled column in the title.
@@ -484,12 +511,12 @@ def figure4(z, u, phis, out, h, Pe, phibar, zeta=ZETA,
     dz = z[1] - z[0] if z.size > 1 else 0.0
     inside = (z + 0.5 * dz <= h) & (z >= 0.0)
     zz = np.linspace(0.0, h, 200)
-    u_ex = bagnold.velocity(zz, h, zeta)
+    u_ex = bagnold.velocity(zz, h, zeta, d=d)
     p_ex = grayChugunov.phi_s(zz / h, Pe, phibar)
     grains = np.isfinite(phis)
     ok_u = inside & np.isfinite(u) & grains
     ok_p = inside & np.isfinite(phis)
-    u_l2 = _l2(u[ok_u], bagnold.velocity(z[ok_u], h, zeta))
+    u_l2 = _l2(u[ok_u], bagnold.velocity(z[ok_u], h, zeta, d=d))
     p_l2 = _l2(phis[ok_p], grayChugunov.phi_s(z[ok_p] / h, Pe, phibar))
     fig, (a, b) = plt.subplots(1, 2, figsize=(8.0, 3.8), sharey=True)
     a.plot(u_ex, zz * 1e3, "k-", label="Bagnold (5.4)")
@@ -543,9 +570,10 @@ def _xi_at(xi, h, level):
 
 
 def figure5(x, h_computed, out, x_front=None, h_inf=T3.h, zeta=ZETA,
-            levels=(0.5, 0.9)):
+            levels=(0.5, 0.9), d=None):
     """Figure 5: the computed free surface h(x) in the moving frame against
-    the travelling fronts of (5.17) with (5.21) for chi = 1 and 5/4, all
+    the travelling fronts of (5.17) with (5.21) for chi = 1 and 5/4 (grain
+    diameter d in Fr of (5.18), default table 1's), all
     fronts (h -> 0) placed at xi = 0.  The computed front is x_front, by
     default front_position(x, h, 0) (the first column without grains, to
     within a cell; pass front_foot(x, phi_air) for sub-cell precision).
@@ -559,8 +587,9 @@ def figure5(x, h_computed, out, x_front=None, h_inf=T3.h, zeta=ZETA,
     xi = x - xf
     far = xi < -0.15
     h_up = float(np.median(h[far])) if far.any() else float("nan")
-    xi1, h1 = chute.front_shape(h_inf, zeta, 1.0)
-    xi54, h54 = chute.front_shape(h_inf, zeta, 1.25)
+    p = chute.TABLE1 if d is None else dataclasses.replace(chute.TABLE1, d=d)
+    xi1, h1 = chute.front_shape(h_inf, zeta, 1.0, p=p)
+    xi54, h54 = chute.front_shape(h_inf, zeta, 1.25, p=p)
     res = {"x_front": xf, "h_upstream": h_up, "h_inf": h_inf,
            "xi_computed": {}, "xi_chi1": {}, "xi_chi54": {}}
     for L in levels:
@@ -740,10 +769,11 @@ def main(argv=None):
     latest = names[-1]
     par = parameters(case)
     h = par.get("h", T3.h)
+    d = grain_diameter(case)
 
     _print_history(case, names)
     res = figure3(case, args.times or _figure3_times(case, names),
-                  out / "figure3.png", h=h)
+                  out / "figure3.png", h=h, d=d)
     print(f"wrote {res['path']}  (fronts: "
           + ", ".join(f"t={t}: {x:.4f} m" for t, x in res["fronts"].items())
           + ")")
@@ -766,7 +796,7 @@ def main(argv=None):
         phis = small_fraction(sampled["alpha.small"], sampled["alpha.large"],
                               sampled["alpha.air"])
         res = figure4(sampled["z"], sampled["U"][:, 0], phis, out / name,
-                      h, pe, phibar, where=where)
+                      h, pe, phibar, where=where, d=d)
         print(f"wrote {res['path']}  (t = {latest} s, {where}: u L2 "
               f"{res['u_l2']:.3g}, phi^s L2 {res['phis_l2']:.3g}, mean "
               f"phi^s {res['phis_mean']:.4f} vs {phibar:.4f})")
@@ -780,13 +810,13 @@ def main(argv=None):
         surface = free_surface(z, f["alpha.air"])
         res = figure5(x, surface, out / "figure5.png",
                       x_front=front_position(x, surface, _spacing(z)),
-                      h_inf=h)
+                      h_inf=h, d=d)
         print(f"wrote {res['path']}  (t = {mt} s, x_F = "
               f"{res['x_front']:.4f} m, xi(h/h_inf) computed "
               f"{res['xi_computed']}, chi=1 {res['xi_chi1']}, chi=5/4 "
               f"{res['xi_chi54']})")
         ubar = frame_velocity(moving, mt) or float(
-            chute.depth_averaged_velocity(h, ZETA))
+            chute.depth_averaged_velocity(h, ZETA, d=d))
         res = figure6(moving, mt, ubar, out / "figure6.png")
         print(f"wrote {res['path']}  (t = {mt} s)")
     return 0
