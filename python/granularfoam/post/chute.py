@@ -27,8 +27,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import colors  # noqa: E402
 
 from ..exact import bagnold, chute, errors, grayChugunov  # noqa: E402
-from ..foamio import (cell_centres, parameters as _parameters,  # noqa: E402
-                      profiles, read_field, read_text, time_names)
+from ..foamio import (cell_centres, entries,  # noqa: E402
+                      parameters as _parameters, profiles, read_field,
+                      read_text, time_names)
 
 ZETA = bagnold.ZETA                 # 24 degrees
 T3 = grayChugunov.TABLE3            # f_sl = 7e-3, D_sl = 1e-6, h = 5e-3
@@ -94,11 +95,12 @@ def parameters(case, dictionary="chuteParameters"):
 
 
 def grain_diameter(case):
-    """d of the grains in case/constant/granularProperties (the chute's
-    grains share one d; table 1: 0.5 mm)."""
-    text = re.sub(r"//.*", "", read_text(
-        Path(case) / "constant" / "granularProperties"))
-    found = {float(v) for v in re.findall(r"\bd\s+([-+0-9.eE]+)\s*;", text)}
+    """d of the grains in case/constant/granularProperties, as
+    foamDictionary expands it (the tutorials take it from
+    system/chuteParameters); the chute's grains share one d (table 1:
+    0.5 mm)."""
+    found = set(entries(Path(case), "constant/granularProperties",
+                        ["grains.small.d", "grains.large.d"]).values())
     assert len(found) == 1, (
         f"{case}: the grains' d are {sorted(found)}, not one value")
     return found.pop()
