@@ -84,8 +84,10 @@ def sidewall_friction(case, **entries):
 
 def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
                delta_t="1e-4", adjust=False, controls=(), prepare=None):
-    """tutorials/squareDrum on n x n cells in validation/results/<dest>:
-    ascii and uncompressed, blockMesh and setGranularFields run.  Without
+    """tutorials/squareDrum on n x n cells in validation/results/<dest>,
+    with etaMax 300 Pa s (the numbers the tests state, e.g. the viscous
+    part of (4.11) an edit halves, are for it): ascii and uncompressed,
+    blockMesh and setGranularFields run.  Without
     adjust, fixed steps of delta_t; controls are (regex, replacement) pairs
     applied to system/controlDict after these settings; prepare, a function
     of the case, changes it further before blockMesh."""
@@ -93,7 +95,8 @@ def small_drum(dest, n=8, end_time="1e-4", write_interval=None,
     edit(case / "system" / "drumParameters",
          [(rf"\n{key}\s+[^;]+;", f"\n{key} {value};")
           for key, value in (("N", n), ("endTime", end_time),
-                             ("writeInterval", write_interval or end_time))])
+                             ("writeInterval", write_interval or end_time),
+                             ("etaMax", 300))])
     settings = [(r"writeCompression\s+on;", "writeCompression off;"),
                 (r"\ndeltaT\s+\S+;", f"\ndeltaT {delta_t};")]
     if not adjust:
