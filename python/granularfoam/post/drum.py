@@ -279,6 +279,15 @@ def summary(case):
         sum(1 for x in lowest if x < 0))
     out["body_shear_rate_median_last_revolution"] = float(
         np.mean(body_shear_rate(case, names)))
+    # The flowing depth on the line through the axis normal to the surface
+    # (drumSidewall.state; the paper: at most about 1.6 cm)
+    from .drumSidewall import measure
+    rows = measure(case, float(names[0]))[0]
+    depths = [r["flowing_depth"] for r in rows]
+    out["flowing_depth_last_revolution_m"] = [float(np.mean(depths)),
+                                              float(np.max(depths))]
+    out["depth_I_above_I1_last_revolution_m"] = float(
+        np.mean([r["depth_I_above_I1"] for r in rows]))
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -481,6 +490,11 @@ def results_table(numbers):
         ("median shear rate in the grains (the body's creep), last "
          "revolution [1/s]", lambda r: g(r.get(
              "body_shear_rate_median_last_revolution"))),
+        ("flowing depth on the mid-line (speed above a quarter of its "
+         "peak), last revolution, mean / max [cm]", lambda r: "–"
+         if "flowing_depth_last_revolution_m" not in r else
+         f"{r['flowing_depth_last_revolution_m'][0] * 100:.2f} / "
+         f"{r['flowing_depth_last_revolution_m'][1] * 100:.2f}"),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
         ("lowest p in the grains, written times of the last revolution [Pa]",
