@@ -5,8 +5,10 @@ for the four statements of the paper on them (section 5):
 - figure 3: "by 20 cm downstream the homogeneously mixed region
   completely disappears": x_mix, the first x from which the grains' mixed
   thickness (chute.mixed_thickness: phi^s between 0.25 and 0.75) stays
-  below MIXED h, at the last lab-frame time; beside it the meeting point
-  of Gray & Thornton's shocks (appendix A);
+  below MIXED h, at the last lab-frame time, and the first x from which it
+  stays at its value at the outlet (the width of the steady transition,
+  a cell or two); beside them the meeting point of Gray & Thornton's
+  shocks (appendix A);
 - figure 4: "the flow is steady at t = 10 s": the first written time at
   which the front is in the last column, the first written time from
   which the outlet's u and phi^s
@@ -94,8 +96,12 @@ def measure(case):
     last_column = lx * (1.0 - 0.5 / par["nx"])
     left = hist["t"][hist["front"] >= last_column - 1e-9]
     x, thickness = chute.mixed_thickness(case, names[-1])
-    low = thickness < MIXED * h
-    beyond = [i for i in range(len(x)) if low[i:].all()]
+    def settled(below):
+        """The first x from which below holds to the outlet."""
+        k = len(x)
+        while k > 0 and below[k - 1]:
+            k -= 1
+        return float(x[k]) if k < len(x) else float("nan")
     outlet = outlet_history(case, h)
     at10 = [r for r in outlet if abs(r[0] - T_FIGURE4) < 1e-9]
     assert at10, f"{case}: no outlet sample at {T_FIGURE4} s"
@@ -109,7 +115,8 @@ def measure(case):
         "case": Path(case).name, "d_m": d,
         "ubar_m_s": float(exact.depth_averaged_velocity(h, chute.ZETA, d=d)),
         "Fr": float(exact.froude(h, chute.ZETA, d=d)),
-        "x_mix_m": float(x[beyond[0]]) if beyond else float("nan"),
+        "x_mix_m": settled(thickness < MIXED * h),
+        "x_mix_outlet_value_m": settled(thickness <= thickness[-1] + 1e-12),
         "x_shock_meeting_m": float(exact.shock_meeting_point(
             h, chute.ZETA, chute.T3.f_sl, d=d)),
         "front_at_outlet_s": float(left[0]) if left.size else float("nan"),
@@ -178,9 +185,10 @@ def table(result):
     rows = [
         ("ū (5.16) [m/s], Fr (5.18)", "–", lambda r:
          f"{r['ubar_m_s']:.3f}, {r['Fr']:.2f}"),
-        ("figure 3: mixed region gone by x [cm] (Gray & Thornton's shocks "
-         "meet at)", "20", lambda r:
-         f"{cm(r['x_mix_m'])} ({cm(r['x_shock_meeting_m'])})"),
+        ("figure 3: mixed region gone by x [cm]: below h/10; at its outlet "
+         "value (Gray & Thornton's shocks meet at)", "20", lambda r:
+         f"{cm(r['x_mix_m'])}; {cm(r['x_mix_outlet_value_m'])} "
+         f"({cm(r['x_shock_meeting_m'])})"),
         ("figure 4: front at the outlet, outlet steady from [s]",
          "steady at 10", lambda r:
          f"{r['front_at_outlet_s']:g}, {r['outlet_steady_from_s']:g}"),
