@@ -7,7 +7,7 @@ the front and head histories of the coupled run against the run without
 frictional feedback (-monodisperse).
 
     /usr/bin/python3 -m granularfoam.post.bulbousHead <case> [<monodisperse>]
-        [--time 5.2] [--out figures]
+        [--time 5.2] [--out figures] [--length 0.25]
 
 The field readers and the free-surface measures are those of the chute
 (granularfoam.post.chute).
@@ -136,6 +136,8 @@ def main():
     ap.add_argument("monodisperse", nargs="?")
     ap.add_argument("--time", default="5.2")
     ap.add_argument("--out", default="figures")
+    ap.add_argument("--length", type=float, default=0.25,
+                    help="figure 8 shows this far behind the front [m]")
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -143,7 +145,7 @@ def main():
     if args.monodisperse:
         runs["no feedback"] = args.monodisperse
     histories = {k: history(c) for k, c in runs.items()}
-    figure8(args.case, args.time, out / "figure8.png")
+    figure8(args.case, args.time, out / "figure8.png", length=args.length)
     figure_history(histories, out / "front_history.png")
     numbers = {k: {q: v.tolist() for q, v in h.items()}
                for k, h in histories.items()}
