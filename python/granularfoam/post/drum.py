@@ -245,6 +245,22 @@ def lobe_period(case, names):
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
+def run_cost(case):
+    """Steps and CPU seconds of the run, from the solver's logs in case
+    (log.granularSegregationFoam and its continuations log.*Foam.*): the
+    number of time steps and the sum over the logs of the last
+    ExecutionTime (of the master process, in a parallel run)."""
+    logs = sorted(Path(case).glob("log.granularSegregationFoam*"))
+    assert logs, f"no solver log in {case}"
+    steps, cpu = 0, 0.0
+    for log in logs:
+        text = read_text(log)
+        steps += len(re.findall(r"^Time = ", text, re.M))
+        times = re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", text, re.M)
+        cpu += float(times[-1]) if times else 0.0
+    return {"steps": steps, "cpu_seconds": cpu}
+
+
 def summary(case):
     """The numbers of a case: J at each revolution, conservation, bounds,
     angle and speed statistics, lobes and their period."""
@@ -254,6 +270,7 @@ def summary(case):
     out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
            "etaMax": par["etaMax"], "alphaScheme": alpha_scheme(case),
            "endTime": float(m["t"][-1])}
+    out.update(run_cost(case))
     out["J_revolution"] = {
         f"{k * PERIOD:g}": float(np.interp(k * PERIOD, m["t"], m["J"]))
         for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
@@ -501,6 +518,8 @@ def results_table(numbers):
          lambda r: f"{r['lowest_p_grains_last_revolution']:.1f} "
                    f"({r['written_times_with_negative_p_grains']} of "
                    f"{len(r['lobes_last_revolution'])} times below 0)"),
+        ("steps, CPU [s] (master process)", lambda r: "–"
+         if "steps" not in r else f"{r['steps']}, {r['cpu_seconds']:.0f}"),
         ("phase volumes, largest relative drift", lambda r: g(max(
             r["volume_drift_air"], r["volume_drift_small"],
             r["volume_drift_large"]), "{:.1e}")),
