@@ -14,8 +14,9 @@ Asserted for each run:
 - zero-sum fluxes (2.12): on every face the pairwise segregation (2.13)
   and diffusion (2.15) fluxes of all phases, air included, sum to zero
   (max|sum_i F_i| / max|F_i| < 1e-12, measured 2.7e-16), both as assembled and after the
-  MULES limiting (the solver prints them each step with DebugSwitches
-  granularMixture 1; one line per time step is required).
+  MULES limiting (the columns pairwiseFluxSum and limitedFluxSum of the
+  granularInvariants function object; one row per time step is
+  required).
 Numbers in validation/results/tridisperse/<run>.json with the figure.
 """
 import math
@@ -83,13 +84,13 @@ def continuity(log):
     return max(cumulative), sum(volumes.values()) / volumes["alpha.air"]
 
 
-def flux_sums(log):
-    """(pairwise, limited, steps) from the solver log."""
-    sums = re.findall(r"flux sums \(2\.12\): pairwise (\S+) limited (\S+)",
-                      log)
+def flux_sums(inv, log):
+    """(pairwise, limited, steps): the flux sums (2.12) of every row of the
+    invariants and the number of time steps in the solver log."""
+    for name in ("pairwiseFluxSum", "limitedFluxSum"):
+        assert name in inv, f"no column {name} in the invariants"
     steps = len(re.findall(r"^Time = ", log, flags=re.M))
-    return (np.array([float(a) for a, _ in sums]),
-            np.array([float(b) for _, b in sums]), steps)
+    return inv["pairwiseFluxSum"], inv["limitedFluxSum"], steps
 
 
 @pytest.mark.parametrize("name", list(RUNS))
@@ -116,7 +117,7 @@ def test_tridisperse_column(runs, name, check):
     sum_error = float(inv["max|sum-1|"].max())
     non_finite = int(inv["nonFinite"].max())
     log = (case / "log.granularSegregationFoam").read_text()
-    pairwise, limited, steps = flux_sums(log)
+    pairwise, limited, steps = flux_sums(inv, log)
     cumulative, air_ratio = continuity(log)
     tol_air = CONTINUITY_FACTOR * cumulative * air_ratio + TOL_VOLUME
 
@@ -134,7 +135,7 @@ def test_tridisperse_column(runs, name, check):
         else None,
         "flux_sum_limited_max": float(limited.max()) if limited.size
         else None,
-        "time_steps": steps, "flux_sum_lines": int(pairwise.size),
+        "time_steps": steps, "flux_sum_rows": int(pairwise.size),
         "z": last["z"].tolist(), "phi": last["phi"].tolist(),
         "u": last["u"].tolist(), "phi_exact": exact.tolist(),
         "u_exact": u_exact.tolist(),
@@ -148,7 +149,7 @@ def test_tridisperse_column(runs, name, check):
     assert (case / "figures" / "tridisperseColumn.png").is_file(), \
         "Allrun's plot step wrote no figure"
     assert steps > 100 and pairwise.size == steps == limited.size, (
-        f"{pairwise.size} flux-sum lines for {steps} time steps")
+        f"{pairwise.size} flux-sum rows for {steps} time steps")
     check(f"tridisperse {name}: max |sum of pairwise fluxes| (relative)",
           pairwise.max(), "(2.12)")
     check(f"tridisperse {name}: max |sum of limited fluxes| (relative)",

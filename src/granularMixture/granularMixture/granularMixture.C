@@ -225,7 +225,7 @@ void Foam::granularMixture::solve()
         Info<< "Phase transport: " << nSub << " sub-cycles" << endl;
     }
 
-    transport_.solve(nSub, debug);
+    transport_.solve(nSub);
     phases_.reportBounds();
 
     calcMixture();

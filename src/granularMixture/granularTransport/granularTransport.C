@@ -63,7 +63,7 @@ bool Foam::granularTransport::outOfBounds
 void Foam::granularTransport::fluxes
 (
     PtrList<surfaceScalarField>& alphaPhis,
-    PtrList<surfaceScalarField>* relPhis
+    PtrList<surfaceScalarField>& relPhis
 )
 {
     const PtrList<volScalarField>& alphas = phases_.alphas();
@@ -82,22 +82,15 @@ void Foam::granularTransport::fluxes
     }
 
     // The pairwise fluxes are added to alphaPhis pair by pair, the sums
-    // kept apart only for the check of (2.12): the chute's outflow at the
+    // kept apart for the check of (2.12): the chute's outflow at the
     // implicit stress's large steps is sensitive to the order of the sums
-    if (relPhis)
+    forAll(alphas, i)
     {
-        forAll(alphas, i)
-        {
-            relPhis->set
-            (
-                i,
-                new surfaceScalarField
-                (
-                    "relPhi." + alphas[i].name(),
-                    0*alphaPhis[i]
-                )
-            );
-        }
+        relPhis.set
+        (
+            i,
+            new surfaceScalarField("relPhi." + alphas[i].name(), 0*alphaPhis[i])
+        );
     }
 
     List<labelPair> pairs;
@@ -107,7 +100,7 @@ void Foam::granularTransport::fluxes
         alphas, gravity_.unit(), air_, phi_, pairs, phirs
     );
     segregationRate_ =
-        pairFluxes_.add(alphas, pairs, phirs, alphaPhis, relPhis);
+        pairFluxes_.add(alphas, pairs, phirs, alphaPhis, &relPhis);
 }
 
 
@@ -206,13 +199,13 @@ void Foam::granularTransport::update
 }
 
 
-void Foam::granularTransport::step(const bool checkSums)
+void Foam::granularTransport::step()
 {
     const label nPhases = phases_.size();
 
     PtrList<surfaceScalarField> alphaPhis(nPhases);
-    PtrList<surfaceScalarField> relPhis(checkSums ? nPhases : 0);
-    fluxes(alphaPhis, checkSums ? &relPhis : nullptr);
+    PtrList<surfaceScalarField> relPhis(nPhases);
+    fluxes(alphaPhis, relPhis);
 
     PtrList<surfaceScalarField> upwindPhis(nPhases);
     forAll(upwindPhis, i)
@@ -228,12 +221,14 @@ void Foam::granularTransport::step(const bool checkSums)
     }
     limit(alphaPhis, upwindPhis);
 
-    if (checkSums)
-    {
-        Info<< "    flux sums (2.12): pairwise "
-            << granularPairFluxes::fluxSum(relPhis)
-            << " limited " << granularPairFluxes::fluxSum(alphaPhis) << endl;
-    }
+    pairwiseFluxSum_.value() = max
+    (
+        pairwiseFluxSum_.value(), granularPairFluxes::fluxSum(relPhis)
+    );
+    limitedFluxSum_.value() = max
+    (
+        limitedFluxSum_.value(), granularPairFluxes::fluxSum(alphaPhis)
+    );
 
     update(alphaPhis, upwindPhis);
 }
@@ -271,7 +266,31 @@ Foam::granularTransport::granularTransport
         mesh_,
         dimensionedScalar(dimMass/dimTime, Zero)
     ),
-    segregationRate_(mesh_.nCells(), Zero)
+    segregationRate_(mesh_.nCells(), Zero),
+    pairwiseFluxSum_
+    (
+        IOobject
+        (
+            "pairwiseFluxSum",
+            mesh_.time().constant(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        dimensionedScalar(dimless, Zero)
+    ),
+    limitedFluxSum_
+    (
+        IOobject
+        (
+            "limitedFluxSum",
+            mesh_.time().constant(),
+            mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE
+        ),
+        dimensionedScalar(dimless, Zero)
+    )
 {}
 
 
@@ -337,11 +356,13 @@ Foam::label Foam::granularTransport::nSubCycles(const scalar transportCo) const
 }
 
 
-void Foam::granularTransport::solve(const label nSub, const bool checkSums)
+void Foam::granularTransport::solve(const label nSub)
 {
+    pairwiseFluxSum_.value() = 0;
+    limitedFluxSum_.value() = 0;
     if (nSub <= 1)
     {
-        step(checkSums);
+        step();
         return;
     }
 
@@ -379,7 +400,7 @@ void Foam::granularTransport::solve(const label nSub, const bool checkSums)
         !(++alphaSubCycle).end();
     )
     {
-        step(checkSums);
+        step();
         rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
         forAll(alphaPhiSums, i)
         {

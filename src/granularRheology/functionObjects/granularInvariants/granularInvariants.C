@@ -20,7 +20,17 @@ namespace functionObjects
     defineTypeNameAndDebug(granularInvariants, 0);
 
     //- The solver's lowest grain pressure of the step (granularMixture)
-    static const word grainPressureName("grainPressureMin");
+    //  and the relative sums of the fluxes over the phases (2.12)
+    //  (granularTransport): the values the solver registers, each a column
+    //  when present
+    static const wordList solverValues
+    ({
+        "grainPressureMin", "pairwiseFluxSum", "limitedFluxSum"
+    });
+    static const wordList solverColumns
+    ({
+        "minGrainPressure", "pairwiseFluxSum", "limitedFluxSum"
+    });
     addToRunTimeSelectionTable(functionObject, granularInvariants, dictionary);
 }
 }
@@ -75,9 +85,12 @@ void Foam::functionObjects::granularInvariants::writeFileHeader(Ostream& os)
     }
     writeTabbed(os, "max|sum-1|");
     writeTabbed(os, "nonFinite");
-    if (foundObject<uniformDimensionedScalarField>(grainPressureName))
+    forAll(solverValues, k)
     {
-        writeTabbed(os, "minGrainPressure");
+        if (foundObject<uniformDimensionedScalarField>(solverValues[k]))
+        {
+            writeTabbed(os, solverColumns[k]);
+        }
     }
     os  << endl;
 }
@@ -192,11 +205,13 @@ bool Foam::functionObjects::granularInvariants::write()
     if (Pstream::master())
     {
         file() << tab << sumErr << tab << nonFinite;
-        const auto* pg =
-            findObject<uniformDimensionedScalarField>(grainPressureName);
-        if (pg)
+        for (const word& name : solverValues)
         {
-            file() << tab << pg->value();
+            const auto* v = findObject<uniformDimensionedScalarField>(name);
+            if (v)
+            {
+                file() << tab << v->value();
+            }
         }
         file() << endl;
     }
