@@ -1,12 +1,13 @@
 """Figure 5 against the mesh along the slope: the chute tutorial with nx
 columns (default 155, 4 mm; 620, 1 mm), continued in the moving frame from
-8 s to 14 s, and its front against (5.17) for chi = 1 and 5/4: xi where h
-reaches 1/2 and 0.9 of h_inf (grain_size.front).  Tells whether the lag
-of the computed front behind (5.17) is the mesh's.
+8 s to 14 s, and with d = 0.143 mm on 1 mm columns from 4 s to 14 s (as
+grain_size.py on 4 mm), each front against (5.17) for chi = 1 and 5/4: xi
+where h reaches 1/2 and 0.9 of h_inf (grain_size.front).  Tells whether
+the lag of the computed front behind (5.17) is the mesh's.
 
     /usr/bin/python3 validation/chute/front_mesh.py CASE [CASE ...] [--out DIR]
 
-writes DIR/front_mesh.json and DIR/figure5_nx<nx>.png (DIR default
+writes DIR/front_mesh.json and DIR/figure5_d<d>_nx<nx>.png (DIR default
 validation/chute/measured); set-up in SETUP.
 """
 import argparse
@@ -18,7 +19,10 @@ from grain_size import front
 
 SETUP = ("for NX in 155 620; do cp -r tutorials/chute chute_nx$NX && "
          "(cd chute_nx$NX && ./Allrun -serial -nx $NX -endTime 8 "
-         "-writeInterval 1 && ./Allrun-movingFrame); done")
+         "-writeInterval 1 && ./Allrun-movingFrame); done; cp -r "
+         "tutorials/chute chute_d143_nx800 && (cd chute_d143_nx800 && "
+         "./Allrun -np 2 -d 143e-6 -Lx 0.8 -nx 800 -endTime 4 -writeInterval "
+         "0.5 && ./Allrun-movingFrame -start 4 -endTime 14 -parallel)")
 
 
 def main(argv=None):
@@ -30,7 +34,8 @@ def main(argv=None):
     runs = {}
     for case in args.cases:
         par = chute.parameters(case)
-        key = f"nx{int(par['nx'])}"
+        key = (f"d{chute.grain_diameter(case) * 1e6:.0f}um"
+               f"_nx{int(par['nx'])}")
         res = front(case, args.out / f"figure5_{key}.png")
         res["dx_m"] = par["Lx"] / par["nx"]
         res["d_m"] = chute.grain_diameter(case)
