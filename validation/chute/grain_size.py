@@ -27,7 +27,7 @@ CASE is a lab-frame run with its moving-frame continuation in
 CASE/movingFrame, or in LONG/movingFrame where --front names one (SETUP
 below); DIR (default validation/chute/measured)
 receives grain_size.json, grain_size.png (the mixed thickness along the
-chute) and figure5_d<d>.png of each case; with --readme the table of
+chute), and figure4_d<d>.png (at 10 s) and figure5_d<d>.png of each case; with --readme the table of
 the runs is rendered into README between its markers
 (<!-- grain size --> ... <!-- end of grain size -->).
 """
@@ -87,7 +87,18 @@ def steady_time(history):
     return history[k][0] if k < len(settled) else float("nan")
 
 
-def measure(case):
+def figure4(case, out, d, h, pe, phibar):
+    """Figure 4 at the outlet at T_FIGURE4 (the paper's time)."""
+    prof = profiles(case, chute._time_name(case, T_FIGURE4, "profiles"),
+                    function="profiles", set_name="outlet")
+    phis = chute.small_fraction(prof["alpha.small"], prof["alpha.large"],
+                                prof["alpha.air"])
+    return chute.figure4(prof["z"], prof["U"][:, 0], phis, out, h, pe,
+                         phibar, where=f"the outlet at t = {T_FIGURE4:g} s",
+                         d=d)["path"]
+
+
+def measure(case, out):
     par = chute.parameters(case)
     h, lx = par["h"], par["Lx"]
     d = chute.grain_diameter(case)
@@ -127,6 +138,8 @@ def measure(case):
             p10, grayChugunov.phi_s(z / h, pe, phibar)),
         "lab_end_time_s": float(names[-1]),
     }
+    res["figure4"] = Path(figure4(case, out / f"figure4_d{d * 1e6:.0f}um.png",
+                                  d, h, pe, phibar)).name
     return res, (x, thickness)
 
 
@@ -237,7 +250,7 @@ def main(argv=None):
         longer[Path(case).name] = Path(long)
     runs, curves = {}, {}
     for case in args.cases:
-        res, (x, thickness) = measure(case)
+        res, (x, thickness) = measure(case, args.out)
         key = f"d{res['d_m'] * 1e6:.0f}um"
         source = longer.get(case.name, case)
         res["figure5"] = front(source, args.out / f"figure5_{key}.png")
