@@ -34,11 +34,11 @@ def main(argv=None):
     runs = {}
     for case in args.cases:
         par = chute.parameters(case)
-        key = (f"d{chute.grain_diameter(case) * 1e6:.0f}um"
-               f"_nx{int(par['nx'])}")
+        d = chute.grain_diameter(case)
+        key = f"d{d * 1e6:.0f}um_nx{int(par['nx'])}"
         res = front(case, args.out / f"figure5_{key}.png")
         res["dx_m"] = par["Lx"] / par["nx"]
-        res["d_m"] = chute.grain_diameter(case)
+        res["d_m"] = d
         runs[key] = res
     result = {"runs": runs, "setup": SETUP,
               "command": "/usr/bin/python3 validation/chute/front_mesh.py "

@@ -60,9 +60,18 @@ STEADY = 1e-2           # relative L2 of the outlet profiles to their last
 T_FIGURE4 = 10.0        # s, the paper's figure 4
 
 
+def trailing_start(flags):
+    """Index of the first of the trailing run of true flags (len(flags)
+    when the last is false)."""
+    k = len(flags)
+    while k > 0 and flags[k - 1]:
+        k -= 1
+    return k
+
+
 def outlet_history(case, h):
-    """Per sampled time of the outlet column: (t, u (n,), phi^s (n,)) over
-    the cells wholly below the inflow depth h."""
+    """Per sampled time of the outlet column: (t, z (n,), u (n,), phi^s
+    (n,)) over the cells wholly below the inflow depth h."""
     out = []
     for t in times(case, "profiles"):
         prof = profiles(case, t, function="profiles", set_name="outlet")
@@ -70,21 +79,19 @@ def outlet_history(case, h):
         inside = z + 0.5 * (z[1] - z[0]) <= h
         phis = chute.small_fraction(prof["alpha.small"],
                                     prof["alpha.large"]).filled(0.0)
-        out.append((float(t), prof["U"][inside, 0], phis[inside]))
+        out.append((float(t), z[inside], prof["U"][inside, 0],
+                    phis[inside]))
     return out
 
 
 def steady_time(history):
     """The first time from which u and phi^s at the outlet stay within
     STEADY (relative L2) of their last values."""
-    u_end, p_end = history[-1][1], history[-1][2]
-    settled = [errors.l2_relative(u, u_end) < STEADY
-               and errors.l2_relative(p, p_end) < STEADY
-               for _, u, p in history]
-    k = len(settled)
-    while k > 0 and settled[k - 1]:
-        k -= 1
-    return history[k][0] if k < len(settled) else float("nan")
+    u_end, p_end = history[-1][2], history[-1][3]
+    k = trailing_start([errors.l2_relative(u, u_end) < STEADY
+                        and errors.l2_relative(p, p_end) < STEADY
+                        for _, _, u, p in history])
+    return history[k][0] if k < len(history) else float("nan")
 
 
 def figure4(case, out, d, h, pe, phibar):
@@ -107,19 +114,15 @@ def measure(case, out):
     last_column = lx * (1.0 - 0.5 / par["nx"])
     left = hist["t"][hist["front"] >= last_column - 1e-9]
     x, thickness = chute.mixed_thickness(case, names[-1])
+
     def settled(below):
         """The first x from which below holds to the outlet."""
-        k = len(x)
-        while k > 0 and below[k - 1]:
-            k -= 1
+        k = trailing_start(below)
         return float(x[k]) if k < len(x) else float("nan")
     outlet = outlet_history(case, h)
     at10 = [r for r in outlet if abs(r[0] - T_FIGURE4) < 1e-9]
     assert at10, f"{case}: no outlet sample at {T_FIGURE4} s"
-    _, u10, p10 = at10[0]
-    z = profiles(case, chute._time_name(case, T_FIGURE4, "profiles"),
-                 function="profiles", set_name="outlet")["z"]
-    z = z[z + 0.5 * (z[1] - z[0]) <= h]
+    _, z, u10, p10 = at10[0]
     pe = grayChugunov.peclet(chute.T3.f_sl, h, chute.T3.D_sl, chute.ZETA)
     phibar = chute.downstream_phibar(h)
     res = {
