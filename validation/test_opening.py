@@ -86,7 +86,8 @@ def opening_case(dest, p_opening, grains, end_time):
         edit(case / "0.orig" / name,
              [(r"\n(    frontAndBack\s)", "\n    " + text + r"\n\1")])
     edit(case / "system" / "columnParameters",
-         [(r"\nendTime\s+[^;]+;", f"\nendTime {end_time};"),
+         [(r"\nnx\s+[^;]+;", "\nnx 60;"), (r"\nnz\s+[^;]+;", "\nnz 30;"),
+          (r"\nendTime\s+[^;]+;", f"\nendTime {end_time};"),
           (r"\nwriteInterval\s+[^;]+;", f"\nwriteInterval {end_time};")])
     edit(case / "system" / "controlDict",
          [(r"(invariants[^}]*writeInterval\s+)100;", r"\g<1>1;")], re.S)
