@@ -47,7 +47,7 @@ pytestmark = pytest.mark.validation
 L0 = 0.06                   # [m] the columns' width (the tutorial's)
 CELL = 0.005                # [m] the tutorial's cells
 # a: (H0, Lx, Lz) [m], each box long enough for the run-out of its column
-ASPECT = {0.5: (0.03, 0.2, 0.06), 1: (0.06, 0.3, 0.1), 2: (0.12, 0.4, 0.15),
+ASPECT = {0.5: (0.03, 0.2, 0.1), 1: (0.06, 0.3, 0.1), 2: (0.12, 0.4, 0.15),
           3.33: (0.2, 0.6, 0.3), 5: (0.3, 0.8, 0.35), 7: (0.42, 1.0, 0.5)}
 SMALL_A, LARGE_A = (0.5, 1, 2), (3.33, 5, 7)
 LARGE_A_EXPONENT = 0.8      # the middle of [2/3 (Lube et al., Lajeunesse

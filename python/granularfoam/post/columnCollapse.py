@@ -158,10 +158,15 @@ def figure(numbers, out):
     for ax in (ax1, ax2, ax3):
         ax.grid(alpha=0.3)
     ax3.legend(fontsize=8)
+    return _save(fig, out, "columnCollapse.png")
+
+
+def _save(fig, out, name):
+    """Write fig to out/name (out made where missing); its path."""
     fig.tight_layout()
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    path = out / "columnCollapse.png"
+    path = out / name
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
@@ -214,13 +219,7 @@ def runout_figure(fits, out):
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    path = out / "runout.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, out, "runout.png")
 
 
 def main():
