@@ -9,6 +9,7 @@ bench/results.json and bench/tutorials.json (after editing either, say):
 import json
 import re
 import sys
+import textwrap
 from pathlib import Path
 
 BENCH = Path(__file__).resolve().parent
@@ -442,9 +443,56 @@ def write(results, path):
     Path(path).write_text("\n".join(lines) + "\n")
 
 
+TWO_COMMANDS_BEGIN = "<!-- two-commands: rendered by bench/report.py -->"
+TWO_COMMANDS_END = "<!-- end two-commands -->"
+
+
+def two_commands_lines(t):
+    """README.md's paragraphs on ./Allrun and ./Alltest from the times of
+    bench/twocommands (bench/twocommands.json)."""
+    lab = t["chute_lab_frame_clock_s"]
+    moving = t["chute_moving_frame_clock_s"]
+    where = f"on a fresh clone on {t['cores']} cores"
+    if t["load_before"] > 0.5:
+        where += f" (load {t['load_before']:g} at the start)"
+    paragraphs = [
+        "Set up, build and run the chute of §5 on its default mesh (0 to "
+        "25 s, then 8 to 14 s in the frame of the front), leaving figures "
+        f"3–6 in `tutorials/chute/figures/` ({t['allrun_s'] / 60:.1f} min "
+        f"{where}: {lab:.0f} s for the lab frame on {t['cores']} ranks, "
+        f"{moving:.0f} s for the frame of the front, the rest for the "
+        "set-up, the build and the figures):",
+        "    ./Allrun",
+        "Set up, build and run the tests (`./Allrun` then `./Alltest`, what "
+        f"CI runs, took {(t['allrun_s'] + t['alltest_s']) / 60:.0f} min "
+        f"{where}, the {t['tests_passed']} tests "
+        f"{t['tests_s'] / 60:.0f} min of it; `bench/twocommands` measures it, "
+        "into `bench/twocommands.json`):",
+        "    ./Alltest",
+    ]
+    lines = []
+    for p in paragraphs:
+        lines += [p if p.startswith("    ") else textwrap.fill(p, 76), ""]
+    return lines[:-1]
+
+
+def render_readme(path=REPO / "README.md"):
+    """Replaces the paragraphs between README.md's two-commands markers by
+    those of bench/twocommands.json."""
+    times = json.loads((BENCH / "twocommands.json").read_text())
+    text = Path(path).read_text()
+    begin = text.index(TWO_COMMANDS_BEGIN) + len(TWO_COMMANDS_BEGIN)
+    end = text.index(TWO_COMMANDS_END)
+    Path(path).write_text(text[:begin] + "\n"
+                          + "\n".join(two_commands_lines(times)) + "\n"
+                          + text[end:])
+
+
 def main():
     results = json.loads((BENCH / "results.json").read_text())
     write(results, REPO / "BENCHMARKS.md")
+    if (BENCH / "twocommands.json").exists():
+        render_readme()
 
 
 if __name__ == "__main__":
