@@ -242,11 +242,13 @@ def latest_time(case):
 
 def coupling_settings(name):
     """fvSolution entries of a coupling named like PISO-10, SIMPLEC-1 or
-    Krylov-BFBt-10 (preconditioner BFBt or PISO, at most 10 iterations;
-    a suffix -tol1e-4 sets the tolerance, -inner1e-3 innerRelTol)."""
+    Krylov-BFBt-10 (preconditioner BFBt, PISO or CahouetChabard, at most
+    10 iterations; a suffix -tol1e-4 sets the tolerance, -inner1e-3
+    innerRelTol)."""
     if name == "reference":
         return dict(REFERENCE)
-    m = re.fullmatch(r"Krylov-(BFBt|PISO)-(\d+)(?:-tol([0-9.e-]+))?"
+    m = re.fullmatch(r"Krylov-(BFBt|PISO|CahouetChabard)-(\d+)"
+                     r"(?:-tol([0-9.e-]+))?"
                      r"(?:-inner([0-9.e-]+))?", name)
     if m and int(m.group(2)) >= 1:
         settings = {"PIMPLE.pressureCoupling": "Krylov",
@@ -261,7 +263,8 @@ def coupling_settings(name):
     m = re.fullmatch(r"(PISO|SIMPLEC)-(\d+)", name)
     if not m or int(m.group(2)) < 1:
         raise ValueError(f"coupling '{name}' is not PISO-N, SIMPLEC-N "
-                         "(N >= 1), Krylov-BFBt-N, Krylov-PISO-N or "
+                         "(N >= 1), Krylov-BFBt-N, Krylov-PISO-N, "
+                         "Krylov-CahouetChabard-N or "
                          "reference")
     return {"PIMPLE.pressureCoupling": m.group(1),
             "PIMPLE.nCorrectors": int(m.group(2))}
@@ -626,7 +629,7 @@ def main(argv=None):
                     default=["chute1", "layer2d", "layer2dSquare"])
     pk.add_argument("--dt", nargs="+", type=float, default=[4e-3])
     pk.add_argument("--preconditioners", nargs="+", default=["BFBt", "PISO"],
-                    choices=["BFBt", "PISO"])
+                    choices=["BFBt", "PISO", "CahouetChabard"])
     pk.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
     pk.add_argument("--no-store", action="store_true",

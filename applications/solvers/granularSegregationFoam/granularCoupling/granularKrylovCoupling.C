@@ -22,6 +22,7 @@ Foam::granularKrylovCoupling::preconditionerNames
 ({
     { preconditioner::PISO, "PISO" },
     { preconditioner::BFBt, "BFBt" },
+    { preconditioner::CahouetChabard, "CahouetChabard" },
 });
 
 

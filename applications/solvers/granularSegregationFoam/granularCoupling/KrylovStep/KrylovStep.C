@@ -56,12 +56,13 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::cellSize(const fvMesh& mesh)
 
 Foam::fvScalarMatrix Foam::KrylovStep::pressureLaplacian
 (
-    const granularKrylovCoupling::frozenStep& s,
+    const surfaceScalarField& coefficient,
+    const label pRefCell,
     volScalarField& p
 )
 {
-    fvScalarMatrix L(fvm::laplacian(s.rAUf, p));
-    L.setReference(s.pRefCell, 0);
+    fvScalarMatrix L(fvm::laplacian(coefficient, p));
+    L.setReference(pRefCell, 0);
     return L;
 }
 
@@ -102,7 +103,7 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::laplacianSolve
         (
             new homogeneousOperator<scalar>
             (
-                pressureLaplacian(s_, p_),
+                pressureLaplacian(s_.rAUf, s_.pRefCell, p_),
                 p_,
                 innerControls(mesh_.solverDict(p_.name()), innerRelTol_)
             )
@@ -111,6 +112,58 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::laplacianSolve
     ++nPressureSolutions_;
     addProfiling(laplacian, "granular::Krylov::laplacianSolve");
     return L_->solve(r, nInnerIter_);
+}
+
+
+Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
+(
+    const scalarField& r
+)
+{
+    if (!Linertia_)
+    {
+        // rho/dt is the Euler time derivative's coefficient
+        const ITstream& ddt = mesh_.ddtScheme("ddt(rho,U)");
+        const word scheme
+        (
+            ddt.size() && ddt[0].isWord() ? ddt[0].wordToken() : word()
+        );
+        if (scheme != "Euler")
+        {
+            FatalIOErrorInFunction(mesh_.schemesDict())
+                << "ddtSchemes: the Krylov coupling's preconditioner "
+                << "CahouetChabard needs ddt(rho,U) Euler, not ";
+            if (scheme.size())
+            {
+                FatalIOError<< scheme;
+            }
+            else
+            {
+                FatalIOError<< ddt;
+            }
+            FatalIOError<< exit(FatalIOError);
+        }
+        const surfaceScalarField dtByRhof
+        (
+            "dtByRhof",
+            mesh_.time().deltaT()/fvc::interpolate(s_.rho)
+        );
+        Linertia_.reset
+        (
+            new homogeneousOperator<scalar>
+            (
+                pressureLaplacian(dtByRhof, s_.pRefCell, p_),
+                p_,
+                innerControls(mesh_.solverDict(p_.name()), innerRelTol_)
+            )
+        );
+    }
+    ++nPressureSolutions_;
+    addProfiling(laplacian, "granular::Krylov::laplacianSolve");
+    // The mixture's viscosity (4.7b)
+    const volScalarField& eta =
+        mesh_.lookupObject<volScalarField>("granularMixture:eta");
+    return Linertia_->solve(r, nInnerIter_) - eta.primitiveField()*r;
 }
 
 
@@ -143,6 +196,7 @@ Foam::KrylovStep::KrylovStep
         innerControls(mesh_.solverDict(U.name()), innerRelTol)
     ),
     L_(),
+    Linertia_(),
     innerRelTol_(innerRelTol),
     dp_
     (
@@ -203,9 +257,15 @@ Foam::KrylovVector Foam::KrylovStep::precondition(const KrylovVector& r)
     KrylovVector z(ru.size());
 
     // The pressure from the approximate Schur complement
-    const tmp<scalarField> t(laplacianSolve(rc));
-    if (preconditioner_ == granularKrylovCoupling::preconditioner::BFBt)
+    typedef granularKrylovCoupling::preconditioner schur;
+    if (preconditioner_ == schur::CahouetChabard)
     {
+        // S^-1 = (D (dt/rho) G)^-1 - eta: the inertial and viscous limits
+        z.p = -CahouetChabard(rc);
+    }
+    else if (preconditioner_ == schur::BFBt)
+    {
+        const tmp<scalarField> t(laplacianSolve(rc));
         // L^-1 (D C^-1 A C^-1 G + L - D C^-1 G) L^-1 rc
         const vectorField CG(s_.rAU.primitiveField()*gradient(t()));
         const vectorField CNCG
@@ -216,7 +276,7 @@ Foam::KrylovVector Foam::KrylovStep::precondition(const KrylovVector& r)
     }
     else
     {
-        z.p = -t();
+        z.p = -laplacianSolve(rc);
     }
 
     // The velocity from the momentum matrix with that pressure
