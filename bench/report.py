@@ -57,7 +57,9 @@ def machine_lines(results):
         f"- Repository: {commit}",
     ]
     for path, digest in s["binaries"].items():
-        shown = path.replace(str(REPO) + "/", "")
+        # From the project's platforms/ on: the checkout's folder varies
+        shown = path[path.find("platforms/"):] if "platforms/" in path \
+            else path
         lines.append(f"- `{shown}`: sha256 `{digest[:16]}`")
     return lines
 
