@@ -529,8 +529,11 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
         shutil.rmtree(case)
     case.parent.mkdir(parents=True, exist_ok=True)
     shutil.copytree(ROOT / "tutorials" / "chute", case,
-                    ignore=shutil.ignore_patterns("[1-9]*", "log.*",
-                                                  "postProcessing"))
+                    # what a run of the tutorial left in it
+                    ignore=shutil.ignore_patterns(
+                        "0", "[1-9]*", "log.*", "postProcessing",
+                        "processor*", "VTK", "figures", "movingFrame",
+                        "decomposeParDict.np*"))
     set_entry(case, "system/chuteParameters", "endTime", end_time)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
