@@ -54,16 +54,29 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::cellSize(const fvMesh& mesh)
 }
 
 
-Foam::fvScalarMatrix Foam::KrylovStep::pressureLaplacian
+Foam::autoPtr<Foam::homogeneousOperator<Foam::scalar>>
+Foam::KrylovStep::laplacian(const surfaceScalarField& coefficient)
+{
+    fvScalarMatrix L(fvm::laplacian(coefficient, p_));
+    L.setReference(s_.pRefCell, 0);
+    return autoPtr<homogeneousOperator<scalar>>::New
+    (
+        L,
+        p_,
+        innerControls(mesh_.solverDict(p_.name()), innerRelTol_)
+    );
+}
+
+
+Foam::tmp<Foam::scalarField> Foam::KrylovStep::solve
 (
-    const surfaceScalarField& coefficient,
-    const label pRefCell,
-    volScalarField& p
+    homogeneousOperator<scalar>& L,
+    const scalarField& r
 )
 {
-    fvScalarMatrix L(fvm::laplacian(coefficient, p));
-    L.setReference(pRefCell, 0);
-    return L;
+    ++nPressureSolutions_;
+    addProfiling(laplacian, "granular::Krylov::laplacianSolve");
+    return L.solve(r, nInnerIter_);
 }
 
 
@@ -99,19 +112,34 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::laplacianSolve
 {
     if (!L_)
     {
-        L_.reset
-        (
-            new homogeneousOperator<scalar>
-            (
-                pressureLaplacian(s_.rAUf, s_.pRefCell, p_),
-                p_,
-                innerControls(mesh_.solverDict(p_.name()), innerRelTol_)
-            )
-        );
+        L_ = laplacian(s_.rAUf);
     }
-    ++nPressureSolutions_;
-    addProfiling(laplacian, "granular::Krylov::laplacianSolve");
-    return L_->solve(r, nInnerIter_);
+    return solve(*L_, r);
+}
+
+
+void Foam::KrylovStep::checkEuler() const
+{
+    const ITstream& ddt = mesh_.ddtScheme("ddt(rho,U)");
+    const word scheme
+    (
+        ddt.size() && ddt[0].isWord() ? ddt[0].wordToken() : word()
+    );
+    if (scheme != "Euler")
+    {
+        FatalIOErrorInFunction(mesh_.schemesDict())
+            << "ddtSchemes: the Krylov coupling's preconditioner "
+            << "CahouetChabard needs ddt(rho,U) Euler, not ";
+        if (scheme.size())
+        {
+            FatalIOError<< scheme;
+        }
+        else
+        {
+            FatalIOError<< ddt;
+        }
+        FatalIOError<< exit(FatalIOError);
+    }
 }
 
 
@@ -123,47 +151,20 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
     if (!Linertia_)
     {
         // rho/dt is the Euler time derivative's coefficient
-        const ITstream& ddt = mesh_.ddtScheme("ddt(rho,U)");
-        const word scheme
+        checkEuler();
+        Linertia_ = laplacian
         (
-            ddt.size() && ddt[0].isWord() ? ddt[0].wordToken() : word()
-        );
-        if (scheme != "Euler")
-        {
-            FatalIOErrorInFunction(mesh_.schemesDict())
-                << "ddtSchemes: the Krylov coupling's preconditioner "
-                << "CahouetChabard needs ddt(rho,U) Euler, not ";
-            if (scheme.size())
-            {
-                FatalIOError<< scheme;
-            }
-            else
-            {
-                FatalIOError<< ddt;
-            }
-            FatalIOError<< exit(FatalIOError);
-        }
-        const surfaceScalarField dtByRhof
-        (
-            "dtByRhof",
-            mesh_.time().deltaT()/fvc::interpolate(s_.rho)
-        );
-        Linertia_.reset
-        (
-            new homogeneousOperator<scalar>
+            surfaceScalarField
             (
-                pressureLaplacian(dtByRhof, s_.pRefCell, p_),
-                p_,
-                innerControls(mesh_.solverDict(p_.name()), innerRelTol_)
+                "dtByRhof",
+                mesh_.time().deltaT()/fvc::interpolate(s_.rho)
             )
         );
     }
-    ++nPressureSolutions_;
-    addProfiling(laplacian, "granular::Krylov::laplacianSolve");
     // The mixture's viscosity (4.7b)
     const volScalarField& eta =
         mesh_.lookupObject<volScalarField>("granularMixture:eta");
-    return Linertia_->solve(r, nInnerIter_) - eta.primitiveField()*r;
+    return solve(*Linertia_, r) - eta.primitiveField()*r;
 }
 
 
