@@ -281,6 +281,55 @@ def test_sidewall_refused(base, tmp_path, name, entries, words):
     _assert_refused(case, name, words, before)
 
 
+# system/setGranularFieldsDict, read by setGranularFields:
+# (id, pattern, replacement, words the message must contain)
+SF = "system/setGranularFieldsDict"
+SET_FIELDS_CASES = [
+    ("fractions-sum", r"fractions   \{[^}]*\}",
+     "fractions   { small 0.5; large 0.4; }",
+     ["setGranularFieldsDict", "fractions", "0.9", "not 1"]),
+    ("fraction-above-one", r"fractions   \{[^}]*\}",
+     "fractions   { small 1.5; large 0; }",
+     ["setGranularFieldsDict", "small", "1.5", "[0, 1]"]),
+    ("fraction-negative", r"fractions   \{[^}]*\}",
+     "fractions   { small -0.5; large 1.5; }",
+     ["setGranularFieldsDict", "small", "-0.5"]),
+    ("fraction-unknown-phase", r"fractions   \{[^}]*\}",
+     "fractions   { small 0.5; medium 0.5; }",
+     ["setGranularFieldsDict", "medium", "small", "large"]),
+    ("normal-zero", r"normal      \([^)]*\);", "normal      (0 0 0);",
+     ["setGranularFieldsDict", "normal", "(0 0 0)"]),
+    ("velocity-unknown", r"velocity        rotation;",
+     "velocity        spinning;",
+     ["setGranularFieldsDict", "velocity", "spinning", "rotation"]),
+]
+
+
+@pytest.mark.parametrize("name,pattern,replacement,words", SET_FIELDS_CASES,
+                         ids=[c[0] for c in SET_FIELDS_CASES])
+def test_set_fields_refused(base, tmp_path, name, pattern, replacement,
+                            words):
+    """setGranularFields stops with a FatalIOError naming the dictionary,
+    the keyword and the value, and leaves every file of the start time as
+    it was (the files of 0.orig, so that a write would change them)."""
+    case = tmp_path / name
+    shutil.copytree(base, case)
+    shutil.rmtree(case / "0")
+    shutil.copytree(case / "0.orig", case / "0")
+    edit(case / SF, [(pattern, replacement)], flags=re.S)
+    before = {p.name: p.read_bytes() for p in (case / "0").iterdir()}
+
+    res = run(["setGranularFields"], case, timeout=120)
+    out = res.stdout + res.stderr
+    assert res.returncode > 0, f"{name}: exit {res.returncode}\n{out[-3000:]}"
+    assert "FOAM FATAL IO ERROR" in out, out[-3000:]
+    message = out[out.index("FOAM FATAL"):]
+    missing = [w for w in words if w not in message]
+    assert not missing, f"{name}: {missing} not in\n{message[:2000]}"
+    after = {p.name: p.read_bytes() for p in (case / "0").iterdir()}
+    assert after == before, f"{name}: files of 0 changed"
+
+
 def _assert_refused(case, name, words, before):
     """The solver exits non-zero with a FOAM FATAL message holding every
     word, no core dump, and writes no field."""

@@ -42,6 +42,129 @@ Usage
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
+namespace
+{
+    using namespace Foam;
+
+    //- The patches of U with a BagnoldInletVelocity condition
+    labelList inflowPatches(const volVectorField& U)
+    {
+        labelList inflows;
+        forAll(U.boundaryField(), patchi)
+        {
+            if (isA<BagnoldInletVelocityFvPatchVectorField>
+                (U.boundaryField()[patchi]))
+            {
+                inflows.append(patchi);
+            }
+        }
+        return inflows;
+    }
+
+    //- U_F: -velocity, or ubar e_x (5.16) of the first inflow
+    vector frameVelocity
+    (
+        const argList& args,
+        const volVectorField& U,
+        const labelList& inflows
+    )
+    {
+        vector Uframe(Zero);
+        if (args.readIfPresent("velocity", Uframe))
+        {
+            Info<< "    frame velocity " << Uframe << " (-velocity)" << nl;
+            return Uframe;
+        }
+        if (inflows.empty())
+        {
+            FatalErrorInFunction
+                << "No BagnoldInletVelocity patch in " << U.objectPath()
+                << " to take ubar (5.16) from: give -velocity" << nl
+                << exit(FatalError);
+        }
+        const BagnoldFlow& flow =
+            refCast<const BagnoldInletVelocityFvPatchVectorField>
+            (
+                U.boundaryField()[inflows[0]]
+            ).flow();
+        Uframe = flow.ubar()*flow.downslope();
+        Info<< "    frame velocity " << Uframe << " = ubar e_x (5.16)"
+            << " of the inflow " << U.mesh().boundary()[inflows[0]].name()
+            << nl;
+        return Uframe;
+    }
+
+    //- The conditions in the new frame: the inflows record the total frame
+    //  velocity, a fixed value (a wall, noSlip included) moves at -U_F
+    void shiftBoundaries
+    (
+        volVectorField& U,
+        const labelList& inflows,
+        const vector& Uframe
+    )
+    {
+        const fvMesh& mesh = U.mesh();
+        forAll(U.boundaryField(), patchi)
+        {
+            fvPatchVectorField& Up = U.boundaryFieldRef()[patchi];
+            const word& name = mesh.boundary()[patchi].name();
+
+            if (inflows.found(patchi))
+            {
+                auto& inflow =
+                    refCast<BagnoldInletVelocityFvPatchVectorField>(Up);
+                inflow.setFrameVelocity(inflow.frameVelocity() + Uframe);
+                Info<< "    " << name << ": inflow frame velocity "
+                    << inflow.frameVelocity() << nl;
+            }
+            else if (Up.fixesValue())
+            {
+                const vectorField value(Up - Uframe);
+                U.boundaryFieldRef().set
+                (
+                    patchi,
+                    new fixedValueFvPatchVectorField
+                    (
+                        mesh.boundary()[patchi],
+                        U
+                    )
+                );
+                U.boundaryFieldRef()[patchi] == value;
+                Info<< "    " << name << ": fixedValue, shifted" << nl;
+            }
+            else if (Up.size() && isA<mixedFvPatchVectorField>(Up))
+            {
+                WarningInFunction
+                    << "Patch " << name << ": the " << Up.type()
+                    << " condition's reference value is not shifted" << nl;
+            }
+        }
+        U.correctBoundaryConditions();
+    }
+
+    //- The flux, when the run wrote one: phi - U_F.S_f
+    void shiftFlux(const fvMesh& mesh, const vector& Uframe)
+    {
+        IOobject phiHeader
+        (
+            "phi",
+            mesh.time().timeName(),
+            mesh,
+            IOobject::MUST_READ,
+            IOobject::AUTO_WRITE
+        );
+        if (phiHeader.typeHeaderOk<surfaceScalarField>(true))
+        {
+            surfaceScalarField phi(phiHeader, mesh);
+            phi -=
+                (dimensionedVector("Uframe", dimVelocity, Uframe) & mesh.Sf());
+            phi.write();
+            Info<< "    phi shifted" << nl;
+        }
+    }
+}
+
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -86,98 +209,12 @@ int main(int argc, char *argv[])
             mesh
         );
 
-        // The inflows, whose frame is set, and the frame velocity
-        labelList inflows;
-        forAll(U.boundaryField(), patchi)
-        {
-            if (isA<BagnoldInletVelocityFvPatchVectorField>
-                (U.boundaryField()[patchi]))
-            {
-                inflows.append(patchi);
-            }
-        }
-
-        vector Uframe(Zero);
-        if (args.readIfPresent("velocity", Uframe))
-        {
-            Info<< "    frame velocity " << Uframe << " (-velocity)" << nl;
-        }
-        else if (inflows.size())
-        {
-            const BagnoldFlow& flow =
-                refCast<const BagnoldInletVelocityFvPatchVectorField>
-                (
-                    U.boundaryField()[inflows[0]]
-                ).flow();
-            Uframe = flow.ubar()*flow.downslope();
-            Info<< "    frame velocity " << Uframe << " = ubar e_x (5.16)"
-                << " of the inflow " << mesh.boundary()[inflows[0]].name()
-                << nl;
-        }
-        else
-        {
-            FatalErrorInFunction
-                << "No BagnoldInletVelocity patch in " << U.objectPath()
-                << " to take ubar (5.16) from: give -velocity" << nl
-                << exit(FatalError);
-        }
+        const labelList inflows(inflowPatches(U));
+        const vector Uframe(frameVelocity(args, U, inflows));
 
         U.primitiveFieldRef() -= Uframe;
-
-        forAll(U.boundaryField(), patchi)
-        {
-            fvPatchVectorField& Up = U.boundaryFieldRef()[patchi];
-            const word& name = mesh.boundary()[patchi].name();
-
-            if (inflows.found(patchi))
-            {
-                auto& inflow =
-                    refCast<BagnoldInletVelocityFvPatchVectorField>(Up);
-                inflow.setFrameVelocity(inflow.frameVelocity() + Uframe);
-                Info<< "    " << name << ": inflow frame velocity "
-                    << inflow.frameVelocity() << nl;
-            }
-            else if (Up.fixesValue())
-            {
-                // A wall (noSlip included) moves at -Uframe in the new frame
-                const vectorField value(Up - Uframe);
-                U.boundaryFieldRef().set
-                (
-                    patchi,
-                    new fixedValueFvPatchVectorField
-                    (
-                        mesh.boundary()[patchi],
-                        U
-                    )
-                );
-                U.boundaryFieldRef()[patchi] == value;
-                Info<< "    " << name << ": fixedValue, shifted" << nl;
-            }
-            else if (Up.size() && isA<mixedFvPatchVectorField>(Up))
-            {
-                WarningInFunction
-                    << "Patch " << name << ": the " << Up.type()
-                    << " condition's reference value is not shifted" << nl;
-            }
-        }
-        U.correctBoundaryConditions();
-
-        // The flux, when the run wrote one: phi - Uframe.Sf
-        IOobject phiHeader
-        (
-            "phi",
-            runTime.timeName(),
-            mesh,
-            IOobject::MUST_READ,
-            IOobject::AUTO_WRITE
-        );
-        if (phiHeader.typeHeaderOk<surfaceScalarField>(true))
-        {
-            surfaceScalarField phi(phiHeader, mesh);
-            phi -= (dimensionedVector("Uframe", dimVelocity, Uframe) & mesh.Sf());
-            phi.write();
-            Info<< "    phi shifted" << nl;
-        }
+        shiftBoundaries(U, inflows, Uframe);
+        shiftFlux(mesh, Uframe);
         U.write();
     }
 

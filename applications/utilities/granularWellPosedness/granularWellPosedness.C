@@ -117,6 +117,54 @@ void writeTable
 }
 
 
+//- The file of a command-line option, relative to the case
+fileName optionPath(const argList& args, const word& option)
+{
+    fileName path(args.get<fileName>(option).expand());
+    if (!path.isAbsolute())
+    {
+        path = args.path()/path;
+    }
+    return path;
+}
+
+
+//- The well-posed ranges of one grain phase's law and, for the partially
+//  regularised law (2.8), of the unregularised (2.7) with the same mus, mud,
+//  I0
+void printPhase
+(
+    const word& name,
+    const frictionLaw& law,
+    const scalar Imin,
+    const scalar Imax
+)
+{
+    Info<< nl << "grain phase " << name << ": frictionLaw " << law.type()
+        << nl;
+
+    printRanges(law, Imin, Imax, "    ");
+
+    if (!isA<frictionLaws::BarkerGray>(law))
+    {
+        return;
+    }
+    const auto& c = refCast<const frictionLaws::BarkerGray>(law).coeffs();
+    OStringStream os;
+    os.precision(17);
+    os  << "frictionLaw Jop; JopCoeffs { mus "
+        << c[frictionLaws::BarkerGray::MUS]
+        << "; mud " << c[frictionLaws::BarkerGray::MUD]
+        << "; I0 " << c[frictionLaws::BarkerGray::I0] << "; }";
+    IStringStream is(os.str());
+    const frictionLaws::Jop jop((dictionary(is)));
+
+    Info<< "    unregularised law (2.7) with the same mus, mud, I0:" << nl;
+    printRanges(jop, Imin, Imax, "        ");
+    Info<< "    I1 = " << c[frictionLaws::BarkerGray::I1] << nl;
+}
+
+
 int main(int argc, char *argv[])
 {
     argList::addNote
@@ -149,15 +197,12 @@ int main(int argc, char *argv[])
             << Imax << ": 0 < Imin < Imax" << nl << exit(FatalError);
     }
 
-    fileName dictPath(runTime.constant()/"granularProperties");
-    if (args.found("dict"))
-    {
-        dictPath = args.get<fileName>("dict").expand();
-        if (!dictPath.isAbsolute())
-        {
-            dictPath = args.path()/dictPath;
-        }
-    }
+    const fileName dictPath
+    (
+        args.found("dict")
+      ? optionPath(args, "dict")
+      : fileName(runTime.constant()/"granularProperties")
+    );
 
     const IOdictionary dict
     (
@@ -177,29 +222,7 @@ int main(int argc, char *argv[])
 
     forAll(rheology.names(), i)
     {
-        const frictionLaw& law = rheology.law(i);
-        Info<< nl << "grain phase " << rheology.names()[i]
-            << ": frictionLaw " << law.type() << nl;
-
-        printRanges(law, Imin, Imax, "    ");
-
-        if (isA<frictionLaws::BarkerGray>(law))
-        {
-            const auto& c = refCast<const frictionLaws::BarkerGray>(law).coeffs();
-            OStringStream os;
-            os.precision(17);
-            os  << "frictionLaw Jop; JopCoeffs { mus "
-                << c[frictionLaws::BarkerGray::MUS]
-                << "; mud " << c[frictionLaws::BarkerGray::MUD]
-                << "; I0 " << c[frictionLaws::BarkerGray::I0] << "; }";
-            IStringStream is(os.str());
-            const frictionLaws::Jop jop((dictionary(is)));
-
-            Info<< "    unregularised law (2.7) with the same mus, mud, I0:"
-                << nl;
-            printRanges(jop, Imin, Imax, "        ");
-            Info<< "    I1 = " << c[frictionLaws::BarkerGray::I1] << nl;
-        }
+        printPhase(rheology.names()[i], rheology.law(i), Imin, Imax);
     }
 
     if (args.found("table"))
@@ -211,12 +234,7 @@ int main(int argc, char *argv[])
                 << "Invalid value of option -points: " << nPoints
                 << " (at least 2)" << nl << exit(FatalError);
         }
-        fileName path(args.get<fileName>("table").expand());
-        if (!path.isAbsolute())
-        {
-            path = args.path()/path;
-        }
-        writeTable(rheology, Imin, Imax, nPoints, path);
+        writeTable(rheology, Imin, Imax, nPoints, optionPath(args, "table"));
     }
 
     Info<< nl << "End" << nl << endl;

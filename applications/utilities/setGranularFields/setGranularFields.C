@@ -162,6 +162,177 @@ namespace
         }
         return below;
     }
+
+    //- The fractions of the grain phases below the plane, in the order of
+    //  grainNames, checked: each in [0, 1], their sum 1, every name a grain
+    //  phase of granularProperties
+    scalarList readFractions
+    (
+        const dictionary& fracDict,
+        const wordList& grainNames,
+        const fileName& propertiesName
+    )
+    {
+        for (const word& key : fracDict.toc())
+        {
+            if (!grainNames.found(key))
+            {
+                FatalIOErrorInFunction(fracDict)
+                    << "Phase " << key << " in " << fracDict.name()
+                    << " is not a grain phase of " << propertiesName
+                    << "; the grain phases are " << grainNames << nl
+                    << exit(FatalIOError);
+            }
+        }
+        scalarList c(grainNames.size());
+        scalar sumC = 0;
+        forAll(grainNames, i)
+        {
+            c[i] = granularInput::readNonNegative
+            (
+                fracDict, grainNames[i]
+            ).value();
+            if (c[i] > 1)
+            {
+                granularInput::invalid
+                (
+                    fracDict, grainNames[i], c[i], "a fraction lies in [0, 1]"
+                );
+            }
+            sumC += c[i];
+        }
+        if (mag(sumC - 1) > 1e-12)
+        {
+            FatalIOErrorInFunction(fracDict)
+                << "The fractions in " << fracDict.name() << " sum to "
+                << sumC << ", not 1" << nl << exit(FatalIOError);
+        }
+        return c;
+    }
+
+    //- alpha.<phase> of the start time with the internal values given,
+    //  its boundary conditions kept (not written)
+    volScalarField* alphaField
+    (
+        const fvMesh& mesh,
+        const word& phase,
+        const scalarField& value
+    )
+    {
+        auto* alphaPtr = new volScalarField
+        (
+            IOobject
+            (
+                IOobject::groupName("alpha", phase),
+                mesh.time().timeName(),
+                mesh,
+                IOobject::MUST_READ,
+                IOobject::NO_WRITE
+            ),
+            mesh
+        );
+        alphaPtr->primitiveFieldRef() = value;
+        alphaPtr->correctBoundaryConditions();
+        Info<< "    " << alphaPtr->name() << ": volume "
+            << gSum(mesh.V().field()*value) << " m^3" << endl;
+        return alphaPtr;
+    }
+
+    //- The plane of grainsDict (point, normal), the normal not zero
+    plane readPlane(const dictionary& grainsDict)
+    {
+        const point p0(grainsDict.get<point>("point"));
+        const vector n(grainsDict.get<vector>("normal"));
+        if (mag(n) < SMALL)
+        {
+            FatalIOErrorInFunction(grainsDict)
+                << "normal = " << n << " in " << grainsDict.name()
+                << ": the normal of the plane must not be zero" << nl
+                << exit(FatalIOError);
+        }
+        return plane(p0, n);
+    }
+
+    //- Air above the plane, the grains' composition c below it (not
+    //  written)
+    PtrList<volScalarField> phaseFields
+    (
+        const fvMesh& mesh,
+        const word& airName,
+        const wordList& grainNames,
+        const scalarList& c,
+        const scalarField& below
+    )
+    {
+        // A zero volume flux, as at rest, for the boundary conditions that
+        // look up phi when evaluated (inletOutlet: zero gradient at zero
+        // flux)
+        const surfaceScalarField phi
+        (
+            IOobject
+            (
+                "phi",
+                mesh.time().timeName(),
+                mesh,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE
+            ),
+            mesh,
+            dimensionedScalar(dimVolume/dimTime, Zero)
+        );
+
+        PtrList<volScalarField> alphas(grainNames.size() + 1);
+        alphas.set(0, alphaField(mesh, airName, 1 - below));
+        forAll(grainNames, i)
+        {
+            alphas.set(i + 1, alphaField(mesh, grainNames[i], c[i]*below));
+        }
+        return alphas;
+    }
+
+    //- U of the start time: the mesh's solid-body rotation (7.2) when
+    //  velocity is "rotation", u0 otherwise (not written)
+    tmp<volVectorField> velocityField
+    (
+        const fvMesh& mesh,
+        const word& velocity,
+        const vector& u0
+    )
+    {
+        const Time& runTime = mesh.time();
+        tmp<volVectorField> tU
+        (
+            new volVectorField
+            (
+                IOobject
+                (
+                    "U",
+                    runTime.timeName(),
+                    mesh,
+                    IOobject::MUST_READ,
+                    IOobject::NO_WRITE
+                ),
+                mesh
+            )
+        );
+        volVectorField& U = tU.ref();
+        if (velocity == "rotation")
+        {
+            const meshRotation rotation(runTime);
+            U.primitiveFieldRef() =
+                rotation.velocity(mesh.C().primitiveField(), runTime.value());
+            Info<< "U: the rotation " << rotation.omega(runTime.value())
+                << " rad/s about " << rotation.axis() << " through "
+                << rotation.origin() << endl;
+        }
+        else
+        {
+            U.primitiveFieldRef() = u0;
+            Info<< "U: uniform " << u0 << endl;
+        }
+        U.correctBoundaryConditions();
+        return tU;
+    }
 }
 
 
@@ -208,136 +379,38 @@ int main(int argc, char *argv[])
     );
     const wordList grainNames(properties.subDict("grains").toc());
 
-    // The plane and the composition of the grains below it
     const dictionary& grainsDict = setDict.subDict("grains");
-    const point p0(grainsDict.get<point>("point"));
-    const vector n(grainsDict.get<vector>("normal"));
-    if (mag(n) < SMALL)
-    {
-        FatalIOErrorInFunction(grainsDict)
-            << "normal = " << n << " in " << grainsDict.name()
-            << ": the normal of the plane must not be zero" << nl
-            << exit(FatalIOError);
-    }
-
-    const dictionary& fracDict = grainsDict.subDict("fractions");
-    for (const word& key : fracDict.toc())
-    {
-        if (!grainNames.found(key))
-        {
-            FatalIOErrorInFunction(fracDict)
-                << "Phase " << key << " in " << fracDict.name()
-                << " is not a grain phase of " << properties.name()
-                << "; the grain phases are " << grainNames << nl
-                << exit(FatalIOError);
-        }
-    }
-    scalarList c(grainNames.size());
-    scalar sumC = 0;
-    forAll(grainNames, i)
-    {
-        c[i] = granularInput::readNonNegative
-        (
-            fracDict, grainNames[i]
-        ).value();
-        if (c[i] > 1)
-        {
-            granularInput::invalid
-            (
-                fracDict, grainNames[i], c[i], "a fraction lies in [0, 1]"
-            );
-        }
-        sumC += c[i];
-    }
-    if (mag(sumC - 1) > 1e-12)
-    {
-        FatalIOErrorInFunction(fracDict)
-            << "The fractions in " << fracDict.name() << " sum to "
-            << sumC << ", not 1" << nl << exit(FatalIOError);
-    }
-
-    const scalarField below(fractionBelow(mesh, plane(p0, n)));
-
-    // A zero volume flux, as at rest, for the boundary conditions that look
-    // up phi when evaluated (inletOutlet: zero gradient at zero flux)
-    const surfaceScalarField phi
+    const plane grainSurface(readPlane(grainsDict));
+    const scalarList c
     (
-        IOobject
+        readFractions
         (
-            "phi",
-            runTime.timeName(),
-            mesh,
-            IOobject::NO_READ,
-            IOobject::NO_WRITE
-        ),
-        mesh,
-        dimensionedScalar(dimVolume/dimTime, Zero)
-    );
-
-    // Phase fractions: air above, the grains' composition below
-    const auto setAlpha = [&](const word& phase, const scalarField& value)
-    {
-        volScalarField alpha
-        (
-            IOobject
-            (
-                IOobject::groupName("alpha", phase),
-                runTime.timeName(),
-                mesh,
-                IOobject::MUST_READ,
-                IOobject::NO_WRITE
-            ),
-            mesh
-        );
-        alpha.primitiveFieldRef() = value;
-        alpha.correctBoundaryConditions();
-        alpha.write();
-        Info<< "    " << alpha.name() << ": volume "
-            << gSum(mesh.V().field()*value) << " m^3" << endl;
-    };
-
-    Info<< "Grains below the plane through " << p0 << " with normal "
-        << n/mag(n) << nl;
-    setAlpha(airName, 1 - below);
-    forAll(grainNames, i)
-    {
-        setAlpha(grainNames[i], c[i]*below);
-    }
-
-    // Velocity: uniform, or the mesh's solid-body rotation (7.2)
-    volVectorField U
-    (
-        IOobject
-        (
-            "U",
-            runTime.timeName(),
-            mesh,
-            IOobject::MUST_READ,
-            IOobject::NO_WRITE
-        ),
-        mesh
+            grainsDict.subDict("fractions"), grainNames, properties.name()
+        )
     );
     vector u0(Zero);
     const word velocity
     (
         granularInput::readVectorOrWord(setDict, "velocity", {"rotation"}, u0)
     );
-    if (velocity == "rotation")
+
+    Info<< "Grains below the plane through " << grainSurface.origin()
+        << " with normal " << grainSurface.normal() << nl;
+    const PtrList<volScalarField> alphas
+    (
+        phaseFields
+        (
+            mesh, airName, grainNames, c, fractionBelow(mesh, grainSurface)
+        )
+    );
+    const tmp<volVectorField> U(velocityField(mesh, velocity, u0));
+
+    // Written once every field is set: bad input writes nothing
+    for (const volScalarField& alpha : alphas)
     {
-        const meshRotation rotation(runTime);
-        U.primitiveFieldRef() =
-            rotation.velocity(mesh.C().primitiveField(), runTime.value());
-        Info<< "U: the rotation " << rotation.omega(runTime.value())
-            << " rad/s about " << rotation.axis() << " through "
-            << rotation.origin() << endl;
+        alpha.write();
     }
-    else
-    {
-        U.primitiveFieldRef() = u0;
-        Info<< "U: uniform " << u0 << endl;
-    }
-    U.correctBoundaryConditions();
-    U.write();
+    U().write();
 
     Info<< "\nEnd\n" << endl;
 
