@@ -16,13 +16,14 @@ Description
 
     Derived from multiphaseInterFoam (v1912): its PIMPLE loop, dynamic
     meshes and MPI, with a pressure-velocity coupling (4.1)-(4.2) of PISO
-    or SIMPLEC correctors (granularCoupling, UEqn.H, pCoefficients.H,
-    pEqn.H); the phases are transported with MULES by granularMixture,
-    with pairwise segregation (2.13) and Maxwell-Stefan diffusion (2.15)
-    in the place of interface compression, the air
-    segregated out of the grains (4.3)-(4.5), and the mu(I) viscosity of
-    libgranularRheology coupled by Picard iteration (4.7): every outer
-    corrector re-evaluates the rheology from the latest U and p.
+    or SIMPLEC correctors, or a Krylov coupling (pressureCoupling.H,
+    granularCoupling, UEqn.H, pCoefficients.H, pEqn.H); the phases are
+    transported with MULES by granularMixture, with pairwise segregation
+    (2.13) and Maxwell-Stefan diffusion (2.15) in the place of interface
+    compression, the air segregated out of the grains (4.3)-(4.5), and the
+    mu(I) viscosity of libgranularRheology coupled by Picard iteration
+    (4.7): every outer corrector re-evaluates the rheology from the latest
+    U and p.
 
     The time step follows the CFL (4.11) with its viscous part, plus the
     segregation and diffusion rates; each part is logged every step.  At
@@ -132,34 +133,7 @@ int main(int argc, char *argv[])
         // --- Pressure-velocity PIMPLE corrector loop
         while (pimple.loop())
         {
-            if (pimple.firstIter() || moveMeshOuterCorrectors)
-            {
-                mesh.update();
-
-                if (mesh.changing())
-                {
-                    gh = (mixture.gHydrostatic() & mesh.C()) - ghRef;
-                    ghf = (mixture.gHydrostatic() & mesh.Cf()) - ghRef;
-
-                    MRF.update();
-
-                    if (correctPhi)
-                    {
-                        // Absolute flux from the mapped surface velocity
-                        phi = mesh.Sf() & Uf();
-
-                        #include "correctPhi.H"
-
-                        // Make the flux relative to the mesh motion
-                        fvc::makeRelative(phi, U);
-                    }
-
-                    if (checkMeshCourantNo)
-                    {
-                        #include "meshCourantNo.H"
-                    }
-                }
-            }
+            #include "moveMesh.H"
 
             // The reconstruction's geometry of the mesh as it now is
             reconstruct.update();
@@ -188,36 +162,7 @@ int main(int argc, char *argv[])
             #include "UEqn.H"
             endProfiling(momentum);
 
-            {
-                #include "pCoefficients.H"
-
-                if (coupling.Krylov())
-                {
-                    addProfiling(krylov, "granular::Krylov");
-                    krylovCoupling.solve
-                    (
-                        {
-                            UEqn, rho, rAU(), rAUf, faceForce, phig,
-                            phiDdtCorr, reconstruct, MRF, pRefCell
-                        },
-                        U,
-                        p_rgh
-                    );
-                    coupling.addSolutions(krylovCoupling.nPressureSolutions());
-                }
-
-                // --- Pressure corrector loop
-                while (coupling.correct())
-                {
-                    addProfiling(corrector, "granular::pEqn");
-                    #include "pEqn.H"
-                }
-
-                if (coupling.Krylov())
-                {
-                    krylovCoupling.restorePressure(p_rgh, p, rho, gh);
-                }
-            }
+            #include "pressureCoupling.H"
 
             if (!correctPhi)
             {
