@@ -10,8 +10,9 @@ OpenFOAM) and the ascii fields and moved points of the time directories.
     /usr/bin/python3 -m granularfoam.post.drum CASE [CASE ...] [--out DIR] [--readme README]
 
 writes figure13.png (J(t) of every case given), and for every case, keyed
-by its mesh, correctors, cap and the advection scheme when it is not the
-tutorial's (N50_30correctors_etaMax3000, N50_30correctors_etaMax300_linear),
+by its mesh, coupling, cap and the advection scheme when it is not the
+tutorial's (N50_30correctors_etaMax3000, N50_30correctors_etaMax300_linear,
+N100_KrylovCahouetChabard20_etaMax3000),
 figure10, figure11 and the
 lobes plot, and its numbers into drum.json; with several cases also
 settings.png (phi^s and the shear rate of each at its last common written
@@ -62,6 +63,21 @@ def n_correctors(case):
     return int(m.group(1))
 
 
+def coupling(case):
+    """The pressure-velocity coupling of case/system/fvSolution, as the
+    tables name it: "30 correctors", or "Krylov CahouetChabard 20" (the
+    preconditioner and the largest iteration count)."""
+    text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
+    if not re.search(r"\bpressureCoupling\s+Krylov\s*;", text):
+        return f"{n_correctors(case)} correctors"
+    krylov = re.search(r"\bKrylov\s*\{([^}]*)\}", text)
+    assert krylov, f"no PIMPLE Krylov dictionary in {case}/system/fvSolution"
+    pre = re.search(r"\bpreconditioner\s+(\w+)\s*;", krylov.group(1))
+    its = re.search(r"\bmaxIter\s+(\d+)\s*;", krylov.group(1))
+    return ("Krylov " + (pre.group(1) if pre else "BFBt")
+            + (f" {its.group(1)}" if its else ""))
+
+
 def alpha_scheme(case):
     """The scheme of div(phi,alpha) in case/system/fvSchemes (the advection
     of the phases), e.g. vanLeer."""
@@ -75,7 +91,7 @@ def label(case):
     """The key of a run in drum.json and its figures: N, correctors and
     etaMax, and the advection scheme when it is not the tutorial's."""
     par = parameters(case)
-    key = (f"N{int(par['N'])}_{n_correctors(case)}correctors"
+    key = (f"N{int(par['N'])}_{coupling(case).replace(' ', '')}"
            f"_etaMax{par['etaMax']:g}")
     if alpha_scheme(case) != ALPHA_SCHEME:
         key += "_" + re.sub(r"\W+", "", alpha_scheme(case))
@@ -92,6 +108,27 @@ def body_shear_rate(case, names):
         air = read_field(case, name, "alpha.air")
         out.append(float(np.median(shear[air < 0.5])))
     return out
+
+
+def grain_pressure_steps(case):
+    """Every step's lowest pressure seen by the rheology in the grains, as
+    the solver logs it ("Grain pressure seen by the rheology: min = ...")
+    in case/log.granularSegregationFoam and its continuations: arrays of
+    the step's time and that pressure."""
+    logs = sorted(Path(case).glob("log.granularSegregationFoam*"))
+    assert logs, f"no solver log in {case}"
+    t, low = [], []
+    for log in logs:
+        now = None
+        for line in read_text(log).splitlines():
+            if line.startswith("Time = "):
+                now = float(line.split()[2])
+            elif line.startswith("Grain pressure seen by the rheology: min"):
+                if now is not None:     # not the state read at the start
+                    t.append(now)
+                    low.append(float(line.split("=")[1].split()[0]))
+    assert t, f"no grain pressure in the logs of {case}"
+    return np.array(t), np.array(low)
 
 
 def monitor(case):
@@ -268,6 +305,7 @@ def summary(case):
     m = monitor(case)
     v = volumes(case)
     out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
+           "coupling": coupling(case),
            "etaMax": par["etaMax"], "alphaScheme": alpha_scheme(case),
            "endTime": float(m["t"][-1])}
     out.update(run_cost(case))
@@ -294,6 +332,14 @@ def summary(case):
     out["lowest_p_grains_last_revolution"] = min(lowest)
     out["written_times_with_negative_p_grains"] = int(
         sum(1 for x in lowest if x < 0))
+    t, low = grain_pressure_steps(case)
+    last = t >= m["t"][-1] - PERIOD - 1e-9
+    out["lowest_p_grains_steps_last_revolution"] = float(low[last].min())
+    out["steps_with_negative_p_grains_last_revolution"] = [
+        int(np.sum(low[last] < 0)), int(np.sum(last))]
+    out["lowest_p_grains_steps_all"] = float(low.min())
+    out["steps_with_negative_p_grains_all"] = [int(np.sum(low < 0)),
+                                               len(low)]
     out["body_shear_rate_median_last_revolution"] = float(
         np.mean(body_shear_rate(case, names)))
     # The flowing depth on the line through the axis normal to the surface
@@ -518,6 +564,12 @@ def results_table(numbers):
          lambda r: f"{r['lowest_p_grains_last_revolution']:.1f} "
                    f"({r['written_times_with_negative_p_grains']} of "
                    f"{len(r['lobes_last_revolution'])} times below 0)"),
+        ("lowest p in the grains over the steps of the last revolution "
+         "[Pa] (steps below 0)", lambda r: "–"
+         if "lowest_p_grains_steps_last_revolution" not in r else
+         f"{r['lowest_p_grains_steps_last_revolution']:.1f} "
+         f"({r['steps_with_negative_p_grains_last_revolution'][0]} of "
+         f"{r['steps_with_negative_p_grains_last_revolution'][1]})"),
         ("steps, CPU [s] (master process)", lambda r: "–"
          if "steps" not in r else f"{r['steps']}, {r['cpu_seconds']:.0f}"),
         ("phase volumes, largest relative drift", lambda r: g(max(
@@ -527,12 +579,16 @@ def results_table(numbers):
          f"{r['alpha_min']:.1e} / {r['alpha_max']:g}"),
     ]
     head = "| | " + " | ".join(
-        f"N = {r['N']}, {r['nCorrectors']} correctors, η_max {r['etaMax']:g}"
+        f"N = {r['N']}, "
+        f"{r.get('coupling', str(r['nCorrectors']) + ' correctors')}, "
+        f"η_max {r['etaMax']:g}"
         + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
            != ALPHA_SCHEME else "") for r in runs) + " |"
     lines = [head, "|---" * (len(runs) + 1) + "|"]
     for name, fn in rows:
-        lines.append(f"| {name} | " + " | ".join(fn(r) for r in runs) + " |")
+        cells = [fn(r) for r in runs]
+        if any(c != "–" for c in cells):    # a row no run measured: left out
+            lines.append(f"| {name} | " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
