@@ -30,8 +30,9 @@ records its cost and its outflow against the exact solutions under
 `run` appends its measurements to bench/coupling.json under "harness"
 (an entry with the same state, step, steps, coupling and edits is
 replaced).  --edit changes a dictionary of the case (for example
-constant/granularProperties:air.eta=1e-2): `states --edit` runs the state
-with it from the start, and `run --edit` runs the candidates and their
+constant/granularProperties:air.eta=1e-2; system/fvSolution:
+maxAlphaSubCycles=M sets the phases' sub-cycles): `states --edit` runs the
+state with it from the start, and `run --edit` runs the candidates and their
 reference with it from that state, so that a change of the model is
 judged against its own converged step.  See bench/README.md.
 """
@@ -212,7 +213,7 @@ def make_state(name, edits=()):
     case.parent.mkdir(parents=True, exist_ok=True)
     end_time = STATES[name](case)
     for dictionary, entry, value in map(parse_edit, edits):
-        set_entry(case, dictionary, entry, value)
+        apply_edit(case, dictionary, entry, value)
     set_entry(case, "system/controlDict", "writePrecision", 17)
     print(f"harness: state {name}: running to t = {end_time} s", flush=True)
     how, text = run_solver(case, 6 * 3600)
@@ -276,6 +277,21 @@ def parse_edit(text):
     if not m:
         raise ValueError(f"edit '{text}' is not DICT:ENTRY=VALUE")
     return m.group(1), m.group(2), m.group(3)
+
+
+def apply_edit(case, dictionary, entry, value):
+    """Set the entry of a dictionary of case.  maxAlphaSubCycles of
+    system/fvSolution goes to the phases' solver entry, whose name is a
+    regular expression ("alpha.*") that foamDictionary cannot scope: M
+    sub-cycles at most, or 0 for the transport in the momentum step
+    (nAlphaSubCycles 1)."""
+    if (dictionary, entry) != ("system/fvSolution", "maxAlphaSubCycles"):
+        set_entry(case, dictionary, entry, value)
+        return
+    edit(case / "system" / "fvSolution",
+         [(r"(?:max|n)AlphaSubCycles\s+\d+;",
+           f"maxAlphaSubCycles {value};" if int(value)
+           else "nAlphaSubCycles 1;")])
 
 
 def run_name(state, dt, steps, coupling, edits):
@@ -539,17 +555,12 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
     if sub_cycles is not None:
-        # the phases' solver entry has a regular-expression name, which
-        # foamDictionary cannot scope; 0: the transport in the momentum
-        # step (nAlphaSubCycles 1)
-        edit(case / "system" / "fvSolution",
-             [(r"(?:max|n)AlphaSubCycles\s+\d+;",
-               f"maxAlphaSubCycles {sub_cycles};" if sub_cycles
-               else "nAlphaSubCycles 1;")])
+        apply_edit(case, "system/fvSolution", "maxAlphaSubCycles",
+                   sub_cycles)
     if max_delta_t:
         set_entry(case, "system/controlDict", "maxDeltaT", max_delta_t)
     for dictionary, entry, value in map(parse_edit, edits):
-        set_entry(case, dictionary, entry, value)
+        apply_edit(case, dictionary, entry, value)
     shutil.copytree(case / "0.orig", case / "0")
     foam(case, "blockMesh")
     print(f"harness: chute {tag}: running to t = {end_time} s", flush=True)
