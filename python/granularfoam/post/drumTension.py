@@ -11,8 +11,10 @@ coupling that did not converge, not a physical tension).
         --end 78.75 [--set PIMPLE.nCorrectors=30 ...] [--label NAME] [--out JSON]
 
 --set edits system/fvSolution (ENTRY=VALUE).  The window runs in
-CASE/../tension_<label> (removed first).  With --out the numbers are
-merged into that JSON file under "tension" -> label.
+CASE/../tension_<label> (removed first), its log in
+log.granularSegregationFoam there.  From a start time as set up (0, with
+no p written) the window begins at its first step.  With --out the numbers
+are merged into that JSON file under "tension" -> label.
 """
 import argparse
 import json
@@ -60,17 +62,20 @@ def window(case, start, end, settings, label):
         set_entry(work, "system/controlDict", entry, value)
     for entry, value in settings:
         set_entry(work, "system/fvSolution", entry, value)
-    run(work, "granularSegregationFoam", timeout=3600)
+    (work / "log.granularSegregationFoam").write_text(
+        run(work, "granularSegregationFoam", timeout=3600))
     return work
 
 
-def summary(rows, settings):
+def summary(rows, settings, first_is_step=False):
+    """The window's numbers from step_table's rows; the first row is the
+    written state it starts from, or with first_is_step its first step."""
     low = np.array([r[1] for r in rows])
     flips = int(np.sum(np.sign(low[1:]) != np.sign(low[:-1])))
     return {
         "settings": dict(settings),
         "window_s": [rows[0][0], rows[-1][0]],
-        "steps": len(rows) - 1,
+        "steps": len(rows) - (0 if first_is_step else 1),
         "lowest_p_grains_Pa": float(low.min()),
         "steps_with_negative_p_grains": int(np.sum(low < 0)),
         "sign_changes_of_lowest_p": flips,
@@ -99,8 +104,12 @@ def main(argv=None):
     if not (args.case / args.start).is_dir():
         parser.error(f"no time {args.start} in {args.case}")
     work = window(args.case, args.start, args.end, settings, args.label)
-    rows = step_table(work, time_names(work))
-    out = summary(rows, settings)
+    names = time_names(work)
+    set_up = not any((work / names[0] / f).is_file() for f in ("p", "p.gz"))
+    if set_up:
+        names = names[1:]       # a start time as set up: no p written yet
+    rows = step_table(work, names)
+    out = summary(rows, settings, first_is_step=set_up)
     out["command"] = ("/usr/bin/python3 -m granularfoam.post.drumTension "
                       + " ".join(
         argv if argv is not None else sys.argv[1:]))
