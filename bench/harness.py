@@ -536,7 +536,6 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     (and, if given, maxAlphaSubCycles and maxDeltaT, then the edits); the
     steady outflow against the exact solutions (granularfoam.post.chute)
     and the cost."""
-    from granularfoam.post.chute import outflow
     tag = "_".join(filter(None, [
         coupling, f"sub{sub_cycles}" if sub_cycles is not None else "",
         f"dt{max_delta_t:g}" if max_delta_t else "",
@@ -565,6 +564,15 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     foam(case, "blockMesh")
     print(f"harness: chute {tag}: running to t = {end_time} s", flush=True)
     how, text = run_solver(case, 12 * 3600)
+    return chute_entry(case, how, text, coupling, end_time, sub_cycles,
+                       max_delta_t, edits)
+
+
+def chute_entry(case, how, text, coupling, end_time, sub_cycles, max_delta_t,
+                edits):
+    """The whole_chute entry of a run of the chute in case that ended as
+    `how` with the log `text`."""
+    from granularfoam.post.chute import outflow
     steps = len(re.findall(r"^Time = ", text, re.M))
     cpu = re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", text, re.M)
     solutions = [int(n) for n in re.findall(
@@ -589,7 +597,33 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
     numbers.pop("dz")
     entry.update(status="ok", **{k: float(f"{v:.6g}")
                                  for k, v in numbers.items()})
+    shares = profile_shares(case)
+    if shares:
+        entry["profile_shares"] = shares
     return entry
+
+
+def profile_shares(case, smallest=0.01):
+    """With OpenFOAM's profiling on (controlDict profiling { active true;
+    }): each profiled section's share of the time loop's wall time in
+    <latest time>/uniform/profiling, the sections of at least `smallest`;
+    None without profiling.  A section's share includes its children's."""
+    path = case / latest_time(case) / "uniform" / "profiling"
+    if not path.is_file():
+        return None
+    sections = re.findall(r'description\s+"([^"]*)";\s*calls\s+\d+;'
+                          r'\s*totalTime\s+([0-9.eE+-]+);', path.read_text())
+    loop = [float(t) for d, t in sections if d.startswith("time.run()")]
+    assert loop, f"{path}: no time loop"
+    shares = {}
+    for description, seconds in sections:
+        share = float(seconds) / loop[0]
+        if share >= smallest and not description.startswith(
+                ("application::", "time.run()")):
+            # the same section under two parents: their sum
+            shares[description] = round(shares.get(description, 0) + share,
+                                        3)
+    return shares
 
 
 def store_whole(entries, command):

@@ -239,6 +239,39 @@ def whole_chute_section():
     return lines
 
 
+def profile_section():
+    """The time shares of the whole chute runs made with OpenFOAM's
+    profiling on (bench/harness chute --edit
+    "system/controlDict:profiling={ active true; }")."""
+    path = BENCH / "coupling.json"
+    runs = [r for r in (json.loads(path.read_text()).get("whole_chute", {})
+                        .get("runs", []) if path.exists() else [])
+            if r.get("profile_shares")]
+    if not runs:
+        return []
+    lines = [
+        "## Where a whole chute run spends its time",
+        "",
+        "OpenFOAM's profiling of whole chute runs (the rows above with "
+        "`profiling`): each section's share of the time loop, its children "
+        "included (a solver's `coarsestLevelCorr` is GAMG's solution on its "
+        "coarsest level). Numbers in `bench/coupling.json` (`whole_chute`, "
+        "`profile_shares`).",
+        "",
+    ]
+    for r in runs:
+        lines += [f"{r['coupling']}, maxAlphaSubCycles "
+                  f"{r['max_alpha_sub_cycles']}, maxDeltaT "
+                  f"{r['max_delta_t']:g} s, {r['steps']} steps, "
+                  f"{r['cpu_seconds']:.0f} s CPU:", "",
+                  "| section | share of the time loop |", "|---|---|"]
+        for name, share in sorted(r["profile_shares"].items(),
+                                  key=lambda kv: -kv[1]):
+            lines.append(f"| `{name}` | {share:.1%} |")
+        lines.append("")
+    return lines[:-1]
+
+
 def spectra_section():
     """Ritz values of the Krylov coupling (bench/harness spectrum)."""
     path = BENCH / "coupling.json"
@@ -436,7 +469,8 @@ def write(results, path):
     if section:
         lines += ["", *section]
     for section in (harness_section(), spectra_section(),
-                    whole_chute_section(), tutorials_section()):
+                    whole_chute_section(), profile_section(),
+                    tutorials_section()):
         if section:
             lines += ["", *section]
     notes = warnings(results)
