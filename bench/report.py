@@ -254,9 +254,11 @@ def profile_section():
         "",
         "OpenFOAM's profiling of whole chute runs (the rows above with "
         "`profiling`): each section's share of the time loop, its children "
-        "included (a solver's `coarsestLevelCorr` is GAMG's solution on its "
-        "coarsest level). Numbers in `bench/coupling.json` (`whole_chute`, "
-        "`profile_shares`).",
+        "included. v1912 times a linear solver over the life of its object, "
+        "so `lduMatrix::solver.coarsestLevelCorr`, GAMG's coarsest-level "
+        "solver (17 cells on the chute), spans nearly all of its parent "
+        "GAMG solution, not the coarse solution alone. Numbers in "
+        "`bench/coupling.json` (`whole_chute`, `profile_shares`).",
         "",
     ]
     for r in runs:
