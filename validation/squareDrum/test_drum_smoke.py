@@ -6,11 +6,12 @@ J of (7.6) recomputed from the written fields.
 """
 import math
 import re
+import shutil
 
 import numpy as np
 import pytest
 
-from cases import edit, foam, fresh_case, set_decomposition
+from cases import edit, foam, foam_output, fresh_case, set_decomposition
 from granularfoam.foamio import read_field, cell_centres
 from granularfoam.post import drum as post
 
@@ -158,3 +159,35 @@ def test_serial_parallel(serial, which, request):
     assert np.allclose(a["angle"], b["angle"], rtol=0, atol=0.01)
     assert np.allclose(a["peak"], b["peak"], rtol=5e-3, atol=1e-6)
     assert np.allclose(a["J"], b["J"], rtol=1e-3, equal_nan=True)
+
+
+@pytest.mark.parametrize("which", ["serial", "parallel"])
+def test_post_reads_every_step(which, request):
+    """granularfoam.post.drum reads one lowest grain pressure per time
+    step from the solver's log (on 2 ranks, the master's), in the order of
+    the steps, each the value the step logged, and names the coupling
+    fvSolution sets."""
+    case = request.getfixturevalue(which)
+    log = (case / "log.granularSegregationFoam").read_text()
+    steps = [float(t) for t in re.findall(r"^Time = (\S+)", log, re.M)]
+    logged = [float(p) for p in re.findall(
+        r"^Time = \S+$.*?^Grain pressure seen by the rheology: min = (\S+)",
+        log, re.M | re.S)]
+    t, low = post.grain_pressure_steps(case)
+    assert len(t) == len(steps) == len(logged) > 10, (len(t), len(steps))
+    assert np.array_equal(t, steps) and np.array_equal(low, logged)
+    n = foam_output(case, "foamDictionary", "system/fvSolution", "-entry",
+                    "PIMPLE.nCorrectors", "-value")[0].split()[-1]
+    assert post.coupling(case) == f"{int(n)} correctors"
+
+
+def test_post_names_the_krylov_coupling(serial, tmp_path):
+    """With fvSolution PIMPLE { pressureCoupling Krylov; Krylov { ... } }
+    the runs' key and tables name the preconditioner and iterations."""
+    case = tmp_path / "krylov"
+    (case / "system").mkdir(parents=True)
+    shutil.copy(serial / "system" / "fvSolution", case / "system")
+    edit(case / "system" / "fvSolution",
+         [(r"nCorrectors\s+\d+;", "nCorrectors 1;\n    pressureCoupling "
+           "Krylov;\n    Krylov { preconditioner BFBt; maxIter 8; }")])
+    assert post.coupling(case) == "Krylov BFBt 8"
