@@ -66,7 +66,8 @@ def n_correctors(case):
 def coupling(case):
     """The pressure-velocity coupling of case/system/fvSolution, as the
     tables name it: "30 correctors", or "Krylov CahouetChabard 20" (the
-    preconditioner and the largest iteration count)."""
+    preconditioner and the largest iteration count, each when fvSolution
+    sets it: the solver holds their defaults)."""
     text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
     if not re.search(r"\bpressureCoupling\s+Krylov\s*;", text):
         return f"{n_correctors(case)} correctors"
@@ -74,8 +75,7 @@ def coupling(case):
     assert krylov, f"no PIMPLE Krylov dictionary in {case}/system/fvSolution"
     pre = re.search(r"\bpreconditioner\s+(\w+)\s*;", krylov.group(1))
     its = re.search(r"\bmaxIter\s+(\d+)\s*;", krylov.group(1))
-    return ("Krylov " + (pre.group(1) if pre else "BFBt")
-            + (f" {its.group(1)}" if its else ""))
+    return " ".join(["Krylov"] + [m.group(1) for m in (pre, its) if m])
 
 
 def alpha_scheme(case):
@@ -317,6 +317,7 @@ def summary(case):
             np.max(np.abs(v[ph] / v[ph][0] - 1)))
     out["alpha_min"], out["alpha_max"] = bounds(case)
     # After 20 s, or over the last revolution of a run that ended before
+    # 20 s
     late = m["t"] >= (2 * PERIOD if m["t"][-1] > 2 * PERIOD
                       else m["t"][-1] - PERIOD)
     out["surface_angle_mean_deg"] = float(np.nanmean(m["angle"][late]))
