@@ -191,3 +191,25 @@ def test_post_names_the_krylov_coupling(serial, tmp_path):
          [(r"nCorrectors\s+\d+;", "nCorrectors 1;\n    pressureCoupling "
            "Krylov;\n    Krylov { preconditioner BFBt; maxIter 8; }")])
     assert post.coupling(case) == "Krylov BFBt 8"
+
+
+def test_movie(serial, tmp_path):
+    """granularfoam.post.drumMovie: one frame per written time of the
+    window, each phi^s as figure 11 draws it."""
+    from PIL import Image
+    from granularfoam.post import drumMovie
+
+    out = tmp_path / "movie.gif"
+    times = drumMovie.movie(serial, out)
+    written = [float(t) for t in post.time_names(serial)]
+    assert times == written and len(times) == 3, times
+    with Image.open(out) as gif:
+        assert gif.n_frames == len(times)
+        # The frames differ: the drum turned 36 degrees between the first
+        # and the last
+        first = np.asarray(gif.convert("RGB"))
+        gif.seek(gif.n_frames - 1)
+        last = np.asarray(gif.convert("RGB"))
+    assert first.shape == last.shape and np.any(first != last)
+    late = drumMovie.movie(serial, tmp_path / "late.gif", start=0.4)
+    assert late == written[1:]

@@ -151,8 +151,12 @@ def bounds(case):
 
 
 def points(case, time_name):
-    """The moved mesh points of a time (n, 3)."""
-    text = read_text(Path(case) / str(time_name) / "polyMesh" / "points")
+    """The moved mesh points of a time (n, 3); at t = 0, where the drum
+    has not turned, the points of constant/polyMesh."""
+    where = Path(case) / str(time_name) / "polyMesh" / "points"
+    if float(time_name) == 0 and not where.is_file():
+        where = Path(case) / "constant" / "polyMesh" / "points"
+    text = read_text(where)
     body = text[text.index("FoamFile"):]
     body = body[body.index("}") + 1:]
     m = re.search(r"(\d+)\s*\(", body)
@@ -189,6 +193,14 @@ def centres(X, Y):
     """Cell centres (N, N) of the moved block from its corners (grid)."""
     return (0.25 * (X[:-1, :-1] + X[1:, :-1] + X[:-1, 1:] + X[1:, 1:]),
             0.25 * (Y[:-1, :-1] + Y[1:, :-1] + Y[:-1, 1:] + Y[1:, 1:]))
+
+
+def small_fraction(f):
+    """phi^s = phi^s_g/(phi^s_g + phi^l_g) in the grains (phi^a < 1/2),
+    NaN in the air, from the fields of grid."""
+    grains = f["alpha.small"] + f["alpha.large"]
+    return np.where(f["alpha.air"] < 0.5,
+                    f["alpha.small"] / np.maximum(grains, 1e-12), np.nan)
 
 
 def relative_speed(f, xc, yc, omega=-2 * math.pi / PERIOD):
@@ -424,9 +436,7 @@ def figure_cases(cases, out, n_times=4):
                            ["alpha.small", "alpha.large", "alpha.air",
                             "shearRate"])
             body = f["alpha.air"] < 0.5
-            grains = f["alpha.small"] + f["alpha.large"]
-            phis = np.where(body, f["alpha.small"] / np.maximum(grains, 1e-12),
-                            np.nan)
+            phis = small_fraction(f)
             shear = np.where(body, np.log10(np.maximum(f["shearRate"], 1e-6)),
                              np.nan)
             pc = axes[2 * i, j].pcolormesh(X, Y, phis, cmap="viridis",
@@ -435,7 +445,7 @@ def figure_cases(cases, out, n_times=4):
                                                vmin=-3, vmax=1.5,
                                                shading="flat")
             for ax in axes[2 * i:2 * i + 2, j]:
-                _drum_axes(ax, X, Y)
+                drum_axes(ax, X, Y)
             axes[2 * i, j].set_title(f"{label(case)}\nt = {t:g} s",
                                      fontsize=7)
             axes[2 * i + 1, j].set_title(
@@ -449,7 +459,7 @@ def figure_cases(cases, out, n_times=4):
     _save(fig, out)
 
 
-def _drum_axes(ax, X, Y):
+def drum_axes(ax, X, Y):
     ax.set_aspect("equal")
     ax.set_xlim(-0.145, 0.145)
     ax.set_ylim(-0.145, 0.145)
@@ -469,12 +479,10 @@ def figure11(case, out):
     for ax, t, letter in zip(axes.flat, times, "abcdefghijkl"):
         name = _time_name(case, t)
         X, Y, f = grid(case, name, ["alpha.small", "alpha.large", "alpha.air"])
-        grains = f["alpha.small"] + f["alpha.large"]
-        phis = np.where(f["alpha.air"] < 0.5,
-                        f["alpha.small"] / np.maximum(grains, 1e-12), np.nan)
+        phis = small_fraction(f)
         pc = ax.pcolormesh(X, Y, phis, cmap="viridis", vmin=0, vmax=1,
                            shading="flat")
-        _drum_axes(ax, X, Y)
+        drum_axes(ax, X, Y)
         ax.set_title(f"({letter}) t = {t:g} s", fontsize=9)
     fig.colorbar(pc, ax=axes, shrink=0.6, label=r"$\varphi^s$")
     _save(fig, out)
@@ -509,7 +517,7 @@ def figure10(case, out, times=(78.75, 80.0)):
                            colors="k", linewidths=0.8)
                 ax.contour(xc, yc, capped, [0.5], colors="k",
                            linewidths=0.8, linestyles="--")
-            _drum_axes(ax, X, Y)
+            drum_axes(ax, X, Y)
             fig.colorbar(pc, ax=ax, shrink=0.8, label=label)
             ax.set_title(f"t = {t:g} s", fontsize=9)
     _save(fig, out)

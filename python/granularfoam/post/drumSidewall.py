@@ -39,8 +39,9 @@ from scipy.interpolate import LinearNDInterpolator  # noqa: E402
 from scipy.ndimage import label  # noqa: E402
 
 from ..foamio import time_names  # noqa: E402
-from .drum import (I1, _drum_axes, _save, centres,  # noqa: E402
-                   grid, monitor, parameters, relative_speed)
+from .drum import (I1, drum_axes, _save, centres,  # noqa: E402
+                   grid, monitor, parameters, relative_speed,
+                   small_fraction)
 
 FRACTION = 0.25         # of the line's largest relative speed: the base
                         # of the flowing layer (the body creeps at 10-15 %
@@ -59,8 +60,7 @@ def state(case, name, angle_deg):
     xc, yc = centres(X, Y)
     speed = relative_speed(f, xc, yc)
     grains = f["alpha.air"] < 0.5
-    phis = f["alpha.small"] / np.maximum(f["alpha.small"]
-                                         + f["alpha.large"], 1e-12)
+    phis = small_fraction(f)          # NaN in the air
     area = (2 * L / xc.shape[0]) ** 2           # uniform square cells
 
     a = math.radians(angle_deg)
@@ -112,7 +112,7 @@ def state(case, name, angle_deg):
         out[f"small_rich_area_{r:g}"] = float(area * np.sum(
             grains & (phis > r)))
     profile = {"depth": depth, "speed": ub}
-    maps = {"X": X, "Y": Y, "phis": np.where(grains, phis, np.nan),
+    maps = {"X": X, "Y": Y, "phis": phis,
             "core": core,
             "line": (s_surf, n)}
     return out, profile, maps
@@ -190,7 +190,7 @@ def figure(results, out):
                            linewidths=0.8)
         s_surf, n = maps["line"]
         ax.plot([0, s_surf * n[0]], [0, s_surf * n[1]], "r-", lw=0.8)
-        _drum_axes(ax, maps["X"], maps["Y"])
+        drum_axes(ax, maps["X"], maps["Y"])
         ax.set_title(f"{name}, t = {rows[-1]['t']:g} s", fontsize=8)
     fig.colorbar(pc, ax=fig.axes[3:], shrink=0.7,
                  label=r"$\varphi^s$ (white 0.75, red core)")
