@@ -247,9 +247,13 @@ def coupling_settings(name):
     """fvSolution entries of a coupling named like PISO-10, SIMPLEC-1 or
     Krylov-BFBt-10 (preconditioner BFBt, PISO or CahouetChabard, at most
     10 iterations; a suffix -tol1e-4 sets the tolerance, -inner1e-3
-    innerRelTol)."""
+    innerRelTol); reference-N is the reference with N correctors, to
+    measure how far the reference is from its own converged step."""
     if name == "reference":
         return dict(REFERENCE)
+    m = re.fullmatch(r"reference-(\d+)", name)
+    if m and int(m.group(1)) >= 1:
+        return dict(REFERENCE, **{"PIMPLE.nCorrectors": int(m.group(1))})
     m = re.fullmatch(r"Krylov-(BFBt|PISO|CahouetChabard)-(\d+)"
                      r"(?:-tol([0-9.e-]+))?"
                      r"(?:-inner([0-9.e-]+))?", name)
@@ -267,8 +271,8 @@ def coupling_settings(name):
     if not m or int(m.group(2)) < 1:
         raise ValueError(f"coupling '{name}' is not PISO-N, SIMPLEC-N "
                          "(N >= 1), Krylov-BFBt-N, Krylov-PISO-N, "
-                         "Krylov-CahouetChabard-N or "
-                         "reference")
+                         "Krylov-CahouetChabard-N, reference or "
+                         "reference-N")
     return {"PIMPLE.pressureCoupling": m.group(1),
             "PIMPLE.nCorrectors": int(m.group(2))}
 
@@ -403,27 +407,29 @@ def _rounded(d):
                 and math.isfinite(v) else v) for k, v in d.items()}
 
 
-def reference(state, dt, steps, edits, references):
+def reference(state, dt, steps, edits, references, name="reference"):
     """(case, pressure solutions per step, CPU ms per step) of the
-    reference from the state with the edits, run once and cached; a failed
-    reference gives its status in the place of the case."""
-    key = (state, dt, steps, tuple(edits))
+    reference coupling `name` from the state with the edits, run once and
+    cached; a failed reference gives its status in the place of the
+    case."""
+    key = (state, dt, steps, tuple(edits), name)
     if key not in references:
-        case, status, sol, ms = run_steps(state, dt, steps, "reference",
-                                          edits)
+        case, status, sol, ms = run_steps(state, dt, steps, name, edits)
         references[key] = (case if status == "ok" else status, sol, ms)
     return references[key]
 
 
-def measure(state, dt, steps, coupling, edits, references):
-    """One candidate against its reference."""
-    ref, ref_sol, ref_ms = reference(state, dt, steps, edits, references)
+def measure(state, dt, steps, coupling, edits, references,
+            reference_name="reference"):
+    """One candidate against its reference (the coupling reference_name)."""
+    ref, ref_sol, ref_ms = reference(state, dt, steps, edits, references,
+                                     reference_name)
     entry = {"state": state,
              "time": float(latest_time(state_dir(state, edits))),
              "dt": dt, "steps": steps, "coupling": coupling,
-             "edits": list(edits)}
+             "edits": list(edits), "reference": reference_name}
     reference_ok = not isinstance(ref, str)
-    if coupling == "reference":
+    if coupling == reference_name:
         entry.update(status="ok" if reference_ok else ref,
                      pressure_solutions_per_step=ref_sol,
                      cpu_ms_per_step=ref_ms)
@@ -520,15 +526,16 @@ def store(entries, command):
         "harness",
         "One-step convergence harness (bench/harness, bench/README.md): "
         "from a written state, `steps` fixed steps of `dt` with a coupling, "
-        "against the reference coupling (PISO, 200 correctors, p_rgh to "
-        "1e-13) from the same state. l2_u_grains / l2_u_air: relative L2 of "
+        "against the reference coupling from the same state: `reference` "
+        "(PISO, 200 correctors, p_rgh to 1e-13) unless the entry's "
+        "`reference` names another coupling. l2_u_grains / l2_u_air: relative L2 of "
         "U over the grains (alpha.air < 1/2) / the air; max_w_air: largest "
         "|U_z| in the air; l2_p_base: relative L2 of p along the base; "
         "l2_u_last_columns: relative L2 of U over the grains of the last "
         "ten columns; min_p_grains: the lowest p in the grains (and the "
         "reference's); cpu_ms_per_step over steps 2 to `steps`, serial.",
         lambda e: (e["state"], e["dt"], e["steps"], e["coupling"],
-                   tuple(e["edits"])),
+                   tuple(e["edits"]), e.get("reference", "reference")),
         entries, command)
 
 
@@ -659,6 +666,10 @@ def main(argv=None):
                              "SIMPLEC-3"])
     pr.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
+    pr.add_argument("--reference", default="reference",
+                    help="the coupling the others are compared with "
+                         "(default: reference, 200 PISO correctors with "
+                         "p_rgh to 1e-13)")
     pr.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
     pc = sub.add_parser("chute", help="whole chute runs, one a coupling")
@@ -727,7 +738,7 @@ def main(argv=None):
             store(failed, command)
         return 1 if failed else 0
     try:
-        for c in args.couplings:
+        for c in args.couplings + [args.reference]:
             coupling_settings(c)
         for e in args.edit:
             parse_edit(e)
@@ -747,7 +758,7 @@ def main(argv=None):
             for steps in args.steps:
                 for coupling in args.couplings:
                     e = measure(state, dt, steps, coupling, args.edit,
-                                references)
+                                references, args.reference)
                     entries.append(e)
                     print(json.dumps(e), flush=True)
                     if not args.no_store:

@@ -331,8 +331,10 @@ def harness_section():
         "(p_rgh to 1e-13) from the same state over the same steps: U over "
         "the grains (φ^a < ½) and over the air, p along the base. A model "
         "edit (`bench/harness states --edit`) is judged against its own "
-        "reference. Numbers in `bench/coupling.json` (`harness`), rendered "
-        "here by `bench/report.py`; each row's command and date are there.",
+        "reference. A row whose coupling reads \"A vs B\" is judged against "
+        "the coupling B instead (`bench/harness run --reference B`). Numbers "
+        "in `bench/coupling.json` (`harness`), rendered here by "
+        "`bench/report.py`; each row's command and date are there.",
         "",
         "| state | model edits | Δt [s] | steps | coupling | U grains | "
         "U air | p base | max \\|w\\| air (reference) [m/s] | "
@@ -354,6 +356,10 @@ def harness_section():
     def g(x):
         return "–" if x is None else f"{x:.2g}"
 
+    def coupling(r):
+        ref = r.get("reference", "reference")
+        return r["coupling"] + ("" if ref == "reference" else f" vs {ref}")
+
     order = {"chute1": 0, "chute20": 1, "layer2d": 2, "drum50": 3}
     for r in sorted(runs, key=lambda r: (
             order.get(r["state"], 9), r["edits"], r["dt"] or 0,
@@ -361,10 +367,10 @@ def harness_section():
             *coupling_order(r["coupling"]))):
         if r["status"] != "ok":
             cells = [r["state"], edits(r), g(r["dt"]), steps(r),
-                     r["coupling"], r["status"], "", "", "", "", "", ""]
+                     coupling(r), r["status"], "", "", "", "", "", ""]
         else:
             cells = [r["state"], edits(r), g(r["dt"]), steps(r),
-                     r["coupling"], g(r["l2_u_grains"]), g(r["l2_u_air"]),
+                     coupling(r), g(r["l2_u_grains"]), g(r["l2_u_air"]),
                      g(r["l2_p_base"]),
                      f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
                      f"{g(r.get('min_p_grains'))} "
