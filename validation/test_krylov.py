@@ -22,7 +22,7 @@ DT = 1e-3
 END = f"{STEPS * DT:g}"
 
 PISO_200 = [(r"nCorrectors         \d+;",
-             "nCorrectors         200;"),
+             "nCorrectors         200;\n    pressureCoupling    PISO;"),
             (r"tolerance       1e-9;\n        relTol          0.01;",
              "tolerance       1e-13;\n        relTol          0;")]
 

@@ -176,21 +176,32 @@ def test_post_reads_every_step(which, request):
     t, low = post.grain_pressure_steps(case)
     assert len(t) == len(steps) == len(logged) > 10, (len(t), len(steps))
     assert np.array_equal(t, steps) and np.array_equal(low, logged)
-    n = foam_output(case, "foamDictionary", "system/fvSolution", "-entry",
-                    "PIMPLE.nCorrectors", "-value")[0].split()[-1]
-    assert post.coupling(case) == f"{int(n)} correctors"
+    def setting(entry):
+        return foam_output(case, "foamDictionary", "system/fvSolution",
+                           "-entry", entry, "-value")[0].split()[-1]
+
+    if setting("PIMPLE.pressureCoupling") == "Krylov":
+        expected = ("Krylov " + setting("PIMPLE.Krylov.preconditioner")
+                    + " " + setting("PIMPLE.Krylov.maxIter"))
+    else:
+        expected = f"{int(setting('PIMPLE.nCorrectors'))} correctors"
+    assert post.coupling(case) == expected
 
 
 def test_post_names_the_krylov_coupling(serial, tmp_path):
     """With fvSolution PIMPLE { pressureCoupling Krylov; Krylov { ... } }
-    the runs' key and tables name the preconditioner and iterations."""
+    the runs' key and tables name the preconditioner and iterations; a
+    later entry overrides an earlier one, as OpenFOAM reads it."""
     case = tmp_path / "krylov"
     (case / "system").mkdir(parents=True)
     shutil.copy(serial / "system" / "fvSolution", case / "system")
     edit(case / "system" / "fvSolution",
-         [(r"nCorrectors\s+\d+;", "nCorrectors 1;\n    pressureCoupling "
-           "Krylov;\n    Krylov { preconditioner BFBt; maxIter 8; }")])
-    assert post.coupling(case) == "Krylov BFBt 8"
+         [(r"nCorrectors\s+\d+;", "nCorrectors 12;\n    pressureCoupling "
+           "Krylov;\n    Krylov { preconditioner CahouetChabard; maxIter 8; }")])
+    assert post.coupling(case) == "Krylov CahouetChabard 8"
+    edit(case / "system" / "fvSolution",
+         [(r"maxIter 8; \}", "maxIter 8; }\n    pressureCoupling PISO;")])
+    assert post.coupling(case) == "12 correctors"
 
 
 def test_movie(serial, tmp_path):

@@ -55,27 +55,39 @@ def parameters(case):
     return _parameters(case, "drumParameters")
 
 
+def _fv_solution(case):
+    """case/system/fvSolution without its comments."""
+    return re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
+
+
 def n_correctors(case):
-    """nCorrectors of the PIMPLE dictionary of case/system/fvSolution."""
-    text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
-    m = re.search(r"\bnCorrectors\s+(\d+)\s*;", text)
-    assert m, f"no nCorrectors in {case}/system/fvSolution"
-    return int(m.group(1))
+    """nCorrectors of the PIMPLE dictionary of case/system/fvSolution (the
+    last entry: a later entry overrides an earlier one, as in OpenFOAM's
+    dictionaries)."""
+    found = re.findall(r"\bnCorrectors\s+(\d+)\s*;", _fv_solution(case))
+    assert found, f"no nCorrectors in {case}/system/fvSolution"
+    return int(found[-1])
 
 
 def coupling(case):
     """The pressure-velocity coupling of case/system/fvSolution, as the
     tables name it: "30 correctors", or "Krylov CahouetChabard 20" (the
     preconditioner and the largest iteration count, each when fvSolution
-    sets it: the solver holds their defaults)."""
-    text = re.sub(r"//.*", "", read_text(Path(case) / "system" / "fvSolution"))
-    if not re.search(r"\bpressureCoupling\s+Krylov\s*;", text):
+    sets it: the solver holds their defaults).  Later entries override
+    earlier ones, and Krylov dictionaries merge, as in OpenFOAM's."""
+    text = _fv_solution(case)
+    found = re.findall(r"\bpressureCoupling\s+(\w+)\s*;", text)
+    if not found or found[-1] != "Krylov":
         return f"{n_correctors(case)} correctors"
-    krylov = re.search(r"\bKrylov\s*\{([^}]*)\}", text)
-    assert krylov, f"no PIMPLE Krylov dictionary in {case}/system/fvSolution"
-    pre = re.search(r"\bpreconditioner\s+(\w+)\s*;", krylov.group(1))
-    its = re.search(r"\bmaxIter\s+(\d+)\s*;", krylov.group(1))
-    return " ".join(["Krylov"] + [m.group(1) for m in (pre, its) if m])
+    settings = {}
+    for body in re.findall(r"\bKrylov\s*\{([^}]*)\}", text):
+        for key in ("preconditioner", "maxIter"):
+            values = re.findall(rf"\b{key}\s+(\w+)\s*;", body)
+            if values:
+                settings[key] = values[-1]
+    return " ".join(["Krylov"] + [settings[k] for k in
+                                  ("preconditioner", "maxIter")
+                                  if k in settings])
 
 
 def alpha_scheme(case):
