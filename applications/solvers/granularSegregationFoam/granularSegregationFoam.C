@@ -48,6 +48,7 @@ Description
 #include "dynamicMotionSolverFvMesh.H"
 #include "solidBodyMotionSolver.H"
 #include "meshRotation.H"
+#include "landOnWriteTime.H"
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
