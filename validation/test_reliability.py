@@ -131,7 +131,7 @@ def _drum(dest, adjust):
 KRYLOV = [(r"nCorrectors         \d+;",
            "nCorrectors         1;\n    pressureCoupling    Krylov;\n"
            "    Krylov { preconditioner BFBt; maxIter 20; tolerance 1e-2; }"),
-          (r"nAlphaSubCycles 1;", "maxAlphaSubCycles 5;")]
+          (r"\b(?:max|n)AlphaSubCycles \d+;", "maxAlphaSubCycles 5;")]
 
 
 def _drum_krylov(dest):
