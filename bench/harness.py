@@ -61,7 +61,9 @@ SOLVER = "granularSegregationFoam"
 GRAINS = 0.5                    # alpha.air below this is grains
 OUTLET_COLUMNS = 10
 
-# The reference: PISO with 200 correctors, every p_rgh solution to 1e-13
+# The reference: PISO with 200 correctors, every p_rgh solution to 1e-13,
+# the coupling named REFERENCE_NAME
+REFERENCE_NAME = "reference"
 REFERENCE = {
     "PIMPLE.pressureCoupling": "PISO",
     "PIMPLE.nCorrectors": 200,
@@ -249,7 +251,7 @@ def coupling_settings(name):
     10 iterations; a suffix -tol1e-4 sets the tolerance, -inner1e-3
     innerRelTol); reference-N is the reference with N correctors, to
     measure how far the reference is from its own converged step."""
-    if name == "reference":
+    if name == REFERENCE_NAME:
         return dict(REFERENCE)
     m = re.fullmatch(r"reference-(\d+)", name)
     if m and int(m.group(1)) >= 1:
@@ -407,7 +409,7 @@ def _rounded(d):
                 and math.isfinite(v) else v) for k, v in d.items()}
 
 
-def reference(state, dt, steps, edits, references, name="reference"):
+def reference(state, dt, steps, edits, references, name=REFERENCE_NAME):
     """(case, pressure solutions per step, CPU ms per step) of the
     reference coupling `name` from the state with the edits, run once and
     cached; a failed reference gives its status in the place of the
@@ -420,7 +422,7 @@ def reference(state, dt, steps, edits, references, name="reference"):
 
 
 def measure(state, dt, steps, coupling, edits, references,
-            reference_name="reference"):
+            reference_name=REFERENCE_NAME):
     """One candidate against its reference (the coupling reference_name)."""
     ref, ref_sol, ref_ms = reference(state, dt, steps, edits, references,
                                      reference_name)
@@ -535,7 +537,7 @@ def store(entries, command):
         "ten columns; min_p_grains: the lowest p in the grains (and the "
         "reference's); cpu_ms_per_step over steps 2 to `steps`, serial.",
         lambda e: (e["state"], e["dt"], e["steps"], e["coupling"],
-                   tuple(e["edits"]), e.get("reference", "reference")),
+                   tuple(e["edits"]), e.get("reference", REFERENCE_NAME)),
         entries, command)
 
 
@@ -666,7 +668,7 @@ def main(argv=None):
                              "SIMPLEC-3"])
     pr.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
-    pr.add_argument("--reference", default="reference",
+    pr.add_argument("--reference", default=REFERENCE_NAME,
                     help="the coupling the others are compared with "
                          "(default: reference, 200 PISO correctors with "
                          "p_rgh to 1e-13)")
