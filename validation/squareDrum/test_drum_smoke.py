@@ -128,7 +128,8 @@ def test_pressure_level(serial):
 
 def test_change_over_period(serial):
     """J of (7.6) written by rotatingDrum equals the mean of |phi^s(t) -
-    phi^s(t - T)| of the written fields (uniform cells)."""
+    phi^s(t - T)| of the written fields (uniform cells), as the post's
+    change_over_period computes it."""
     case = serial
     m = post.monitor(case)
     t1 = float(END)
@@ -139,6 +140,11 @@ def test_change_over_period(serial):
                        - read_field(case, f"{t0:g}", "alpha.small")))
     assert J > 1e-4, "phi^s did not change: no segregation"
     assert m["J"][k] == pytest.approx(J, rel=1e-6, abs=1e-9)
+    # The post's J from the written fields, where a restarted monitor
+    # has no sample of t - T
+    assert post.change_over_period(case, t1, float(PERIOD)) == \
+        pytest.approx(J, rel=1e-6, abs=1e-9)
+    assert post.change_over_period(case, t1 + 1, float(PERIOD)) is None
     assert np.all(np.isnan(m["J"][m["t"] < float(PERIOD) - 1e-9]))
     assert np.all(np.isfinite(m["angle"])) and np.all(m["peak"] >= 0)
 

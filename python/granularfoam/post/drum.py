@@ -306,6 +306,43 @@ def lobe_period(case, names):
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
+def cell_areas(X, Y):
+    """Areas (N, N) of the moved block's cells from their corners (grid),
+    by the shoelace formula."""
+    x = (X[:-1, :-1], X[:-1, 1:], X[1:, 1:], X[1:, :-1])
+    y = (Y[:-1, :-1], Y[:-1, 1:], Y[1:, 1:], Y[1:, :-1])
+    return 0.5 * np.abs(sum(x[i] * y[(i + 1) % 4] - x[(i + 1) % 4] * y[i]
+                            for i in range(4)))
+
+
+def change_over_period(case, t, period=PERIOD):
+    """J(t) of (7.6) from the written fields of t and t - T (T = period):
+    sum |phi^s(t) - phi^s(t - T)| V / sum V, phi^s the field the monitor
+    follows (alpha.small), the cells fixed points of the turning drum.
+    None when either time is not written."""
+    try:
+        now, before = _time_name(case, t), _time_name(case, t - period)
+    except AssertionError:
+        return None
+    X, Y, f = grid(case, now, ["alpha.small"])
+    _, _, f0 = grid(case, before, ["alpha.small"])
+    V = cell_areas(X, Y)
+    return float(np.sum(np.abs(f["alpha.small"] - f0["alpha.small"]) * V)
+                 / np.sum(V))
+
+
+def revolution_change(case, m, t):
+    """J at t from the monitor m; where the monitor has no sample of
+    t - T (after a restart it keeps only the written fields of the
+    revolution before), from the written fields (change_over_period);
+    nan when neither has it."""
+    at = np.flatnonzero(np.abs(m["t"] - t) < 1e-6)
+    if at.size and np.isfinite(m["J"][at[-1]]):
+        return float(m["J"][at[-1]])
+    J = change_over_period(case, t)
+    return math.nan if J is None else J
+
+
 def run_cost(case):
     """Steps and CPU seconds of the run, from the solver's logs in case
     (log.granularSegregationFoam and its continuations log.*Foam.*): the
@@ -334,7 +371,7 @@ def summary(case):
            "endTime": float(m["t"][-1])}
     out.update(run_cost(case))
     out["J_revolution"] = {
-        f"{k * PERIOD:g}": float(np.interp(k * PERIOD, m["t"], m["J"]))
+        f"{k * PERIOD:g}": revolution_change(case, m, k * PERIOD)
         for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
     for ph in ("air", "small", "large"):
         out[f"volume_drift_{ph}"] = float(
