@@ -20,11 +20,16 @@ time) run from the same state over the same steps:
                       [--edit DICT:ENTRY=VALUE ...] [--label NAME]
     bench/harness chute [--couplings ...] [--end-time 25] [--sub-cycles M]
                         [--max-delta-t DT] [--edit DICT:ENTRY=VALUE ...]
+    bench/harness drum --source RUN --start T [--couplings ...]
+                       [--edit DICT:ENTRY=VALUE ...]
     bench/harness spectrum [--states ...] [--dt 4e-3] [--preconditioners ...]
 
 `chute` runs the whole chute tutorial from rest with each coupling and
 records its cost and its outflow against the exact solutions under
-"whole_chute".
+"whole_chute"; `drum` runs one revolution of the square drum from a
+written time of a decomposed drum run with each coupling and records its
+cost, J, surface angle, peak speed and grain pressure against the run's
+own over the same revolution under "whole_drum".
 
 `states` writes the states into bench/work/harness/states (git-ignored);
 `run` appends its measurements to bench/coupling.json under "harness"
@@ -50,8 +55,9 @@ from pathlib import Path
 
 import numpy as np
 
-from granularfoam.foamio import (cell_centres, edit, read_field, run as foam,
-                                 set_entry, time_names)
+from granularfoam.foamio import (cell_centres, edit, parameters as
+                                 read_parameters, read_field, read_text,
+                                 run as foam, set_entry, time_names)
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -649,6 +655,155 @@ def store_whole(entries, command):
         entries, command)
 
 
+PERIOD = 10.0                   # s: one drum revolution at Omega = -pi/5
+
+
+def whole_drum(source, start, coupling, edits):
+    """One revolution of a drum run from its written time `start`, on the
+    source run's decomposition: the source's case (its processor
+    directories at `start`) with the coupling and the edits; the
+    rotatingDrum monitor over the revolution against the source run's
+    over the same window (granularfoam.post.drum)."""
+    source = Path(source).resolve()
+    ranks = sorted(source.glob("processor[0-9]*"))
+    assert ranks, f"{source}: no processor directories"
+    start_name = _written(ranks[0], start)
+    n = int(read_parameters(source, "drumParameters")["N"])
+    case = WORK / "drum" / "_".join(filter(None, [
+        f"N{n}", f"t{start:g}", coupling, _tag(edits)]))
+    if case.exists():
+        shutil.rmtree(case)
+    shutil.copytree(source, case, ignore=_state_of_run(source, start_name))
+    set_entry(case, "system/drumParameters", "endTime", start + PERIOD)
+    set_entry(case, "system/drumParameters", "writeInterval", PERIOD)
+    for entry, value in coupling_settings(coupling).items():
+        set_entry(case, "system/fvSolution", entry, value)
+    for dictionary, entry, value in map(parse_edit, edits):
+        apply_edit(case, dictionary, entry, value)
+    print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
+          f"to {start + PERIOD:g} s", flush=True)
+    log = case / f"log.{SOLVER}"
+    with open(log, "w") as out:
+        rc = subprocess.call(
+            ["mpirun", "-np", str(len(ranks)), SOLVER, "-parallel",
+             "-case", str(case)], stdout=out, stderr=subprocess.STDOUT)
+    from granularfoam.post.drum import coupling as coupling_of
+    entry = {"source": str(source), "N": n, "start": start,
+             "source_coupling": coupling_of(source), "coupling": coupling,
+             "edits": list(edits), "ranks": len(ranks)}
+    entry.update(log_cost(log.read_text()))
+    if rc != 0:
+        entry["status"] = f"failed (exit {rc})"
+        return entry
+    window = drum_window(case, start)
+    if window is None:
+        entry["status"] = "ran; the monitor ends before the end"
+        return entry
+    entry.update(window, status="ok")
+    ref = drum_window(source, start)
+    entry["source_window"] = ref
+    if ref is None:
+        entry["status"] = "ok; the source run does not reach the end"
+        return entry
+    for key in ("J_end", "surface_angle_mean_deg", "peak_speed_mean",
+                "peak_speed_max"):
+        entry[f"{key}_vs_source"] = entry[key] / ref[key] - 1
+    return entry
+
+
+def _state_of_run(source, time_name):
+    """copytree's ignore of a decomposed run: the case without its
+    outputs, and of each processor directory the mesh and time_name."""
+    def ignore(directory, names):
+        if Path(directory) == source:
+            return [x for x in _outputs(directory, names)
+                    if not x.startswith("processor")]
+        if (Path(directory).parent == source
+                and Path(directory).name.startswith("processor")):
+            return [x for x in names if x not in ("constant", time_name)]
+        return []
+    return ignore
+
+
+def _written(directory, t):
+    """The name of the time directory of t in directory."""
+    names = [x.name for x in directory.iterdir()
+             if re.fullmatch(r"[0-9.eE+-]+", x.name)
+             and abs(float(x.name) - t) < 1e-6]
+    assert names, f"{directory}: no time {t:g}"
+    return names[0]
+
+
+def log_cost(text, start=None, end=None):
+    """Steps, CPU seconds (ExecutionTime of the master) and pressure
+    solutions per step of a solver log, over the steps of (start, end]."""
+    steps, solutions, cpu, last, before = 0, [], 0.0, None, None
+    now = None
+    for line in text.splitlines():
+        if line.startswith("Time = "):
+            now = float(line.split()[2])
+        inside = now is not None and (start is None or now > start + 1e-9) \
+            and (end is None or now <= end + 1e-9)
+        if line.startswith("Time = ") and inside:
+            steps += 1
+        elif line.startswith("Pressure coupling: ") and inside:
+            solutions.append(int(line.split()[2]))
+        elif line.startswith("ExecutionTime = "):
+            seconds = float(line.split()[2])
+            if inside:
+                last = seconds
+            elif last is None:
+                before = seconds
+    if last is not None:
+        cpu = last - (before or 0.0)
+    return {"steps": steps, "cpu_seconds": cpu,
+            "pressure_solutions_per_step":
+                sum(solutions) / len(solutions) if solutions else None}
+
+
+def drum_window(case, start):
+    """The rotatingDrum monitor of case over (start, start + T]: J at the
+    end, the surface angle and the peak speed; the lowest pressure seen by
+    the rheology in the grains over the steps; the CPU of the steps.
+    None if the monitor ends before start + T."""
+    from granularfoam.post import drum
+    m = drum.monitor(case)
+    end = start + PERIOD
+    if m["t"][-1] < end - 1e-9:
+        return None
+    w = (m["t"] > start + 1e-9) & (m["t"] <= end + 1e-9)
+    t, low = drum.grain_pressure_steps(case)
+    steps = (t > start + 1e-9) & (t <= end + 1e-9)
+    cost = [log_cost(read_text(log), start, end) for log in
+            sorted(Path(case).glob(f"log.{SOLVER}*"))]
+    return {"J_end": drum.revolution_change(case, m, end),
+            "surface_angle_mean_deg": float(np.mean(m["angle"][w])),
+            "surface_angle_range_deg": [float(m["angle"][w].min()),
+                                        float(m["angle"][w].max())],
+            "peak_speed_mean": float(np.mean(m["peak"][w])),
+            "peak_speed_max": float(m["peak"][w].max()),
+            "lowest_p_grains": float(low[steps].min()),
+            "steps_with_negative_p_grains": int(np.sum(low[steps] < 0)),
+            "window_steps": sum(c["steps"] for c in cost),
+            "window_cpu_seconds": sum(c["cpu_seconds"] for c in cost)}
+
+
+def store_drum(entries, command):
+    store_runs(
+        "whole_drum",
+        "One revolution of the square drum from a written time of a run "
+        "(bench/harness drum), on the run's decomposition, with a "
+        "coupling: steps, CPU seconds (master), pressure solutions per "
+        "step; J of (7.6) at the end, the surface angle and the peak "
+        "speed over the revolution (the rotatingDrum monitor), the lowest "
+        "pressure seen by the rheology in the grains over the steps; the "
+        "same of the source run over the same window (source_window) and "
+        "the relative differences (*_vs_source).",
+        lambda e: (e["source"], e["start"], e["coupling"],
+                   tuple(e["edits"])),
+        entries, command)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="bench/harness",
                                      description=__doc__.split("\n\n")[0])
@@ -685,6 +840,17 @@ def main(argv=None):
     pc.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
     pc.add_argument("--no-store", action="store_true",
+                    help="print, do not write bench/coupling.json")
+    pd = sub.add_parser("drum", help="one drum revolution from a written "
+                        "time of a run, one a coupling")
+    pd.add_argument("--source", required=True,
+                    help="a decomposed drum run (its processor directories)")
+    pd.add_argument("--start", type=float, required=True,
+                    help="a time the source wrote [s]")
+    pd.add_argument("--couplings", nargs="+", default=["Krylov-BFBt-20"])
+    pd.add_argument("--edit", nargs="+", default=[],
+                    metavar="DICT:ENTRY=VALUE")
+    pd.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
     pk = sub.add_parser("spectrum", help="Ritz values of the Krylov "
                         "coupling's preconditioned operator")
@@ -732,6 +898,18 @@ def main(argv=None):
             print(json.dumps(e), flush=True)
             if not args.no_store:
                 store_whole([e], command)
+        return 0
+    if args.what == "drum":
+        try:
+            for c in args.couplings:
+                coupling_settings(c)
+        except ValueError as err:
+            parser.error(str(err))
+        for coupling in args.couplings:
+            e = whole_drum(args.source, args.start, coupling, args.edit)
+            print(json.dumps(e), flush=True)
+            if not args.no_store:
+                store_drum([e], command)
         return 0
     if args.what == "states":
         failed = [e for e in (make_state(name, args.edit)

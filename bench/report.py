@@ -190,11 +190,21 @@ def coupling_order(name):
     return (m.group(1), m.group(2) or "", int(m.group(3)), m.group(4))
 
 
+def dash_or(x, fmt="{:.3g}"):
+    """x formatted, or a dash for None."""
+    return "–" if x is None else fmt.format(x)
+
+
+def coupling_runs(section):
+    """The runs of a section of bench/coupling.json (none without it)."""
+    path = BENCH / "coupling.json"
+    return (json.loads(path.read_text()).get(section, {}).get("runs", [])
+            if path.exists() else [])
+
+
 def whole_chute_section():
     """Whole chute runs with a coupling (bench/harness chute)."""
-    path = BENCH / "coupling.json"
-    runs = (json.loads(path.read_text()).get("whole_chute", {})
-            .get("runs", []) if path.exists() else [])
+    runs = coupling_runs("whole_chute")
     if not runs:
         return []
     lines = [
@@ -213,8 +223,7 @@ def whole_chute_section():
         "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
 
-    def g(x, fmt="{:.3g}"):
-        return "–" if x is None else fmt.format(x)
+    g = dash_or
 
     for r in sorted(runs, key=lambda r: (r["end_time"],
                                          *coupling_order(r["coupling"]))):
@@ -239,13 +248,82 @@ def whole_chute_section():
     return lines
 
 
+def whole_drum_section():
+    """One drum revolution from a written time, by coupling (bench/harness
+    drum), against the run it started from."""
+    runs = coupling_runs("whole_drum")
+    if not runs:
+        return []
+    lines = [
+        "## Whole drum revolutions by coupling",
+        "",
+        "`bench/harness drum` (see `bench/README.md`): one revolution of "
+        "the square drum from a written time of a run, on that run's "
+        "decomposition, once per coupling; J of (7.6) at the end, the "
+        "surface angle and the peak speed over the revolution (the "
+        "`rotatingDrum` monitor) and the lowest pressure seen by the "
+        "rheology in the grains over the steps, each with the source run's "
+        "over the same revolution and the relative difference. CPU: the "
+        "master rank's. Numbers in `bench/coupling.json` (`whole_drum`).",
+        "",
+        "| N | revolution [s] | coupling | steps | CPU [s] | pressure "
+        "solutions / step | J at the end | surface angle, mean [deg] | "
+        "peak speed, mean / max [m/s] | lowest p grains [Pa] (steps < 0) "
+        "| status |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+
+    g = dash_or
+
+    def vs(r, key):
+        d = r.get(f"{key}_vs_source")
+        return "" if d is None else f" ({d:+.1%})"
+
+    sources = {}
+    for r in sorted(runs, key=lambda r: (r["N"], r["start"],
+                                         *coupling_order(r["coupling"]))):
+        ok = r["status"].startswith("ok")
+        src = r.get("source_window")
+        if src and (r["source"], r["start"]) not in sources:
+            sources[(r["source"], r["start"])] = True
+            lines.append(
+                f"| {r['N']} | {r['start']:g}–{r['start'] + 10:g} | the "
+                f"source run ({r['source_coupling']}) | "
+                f"{src['window_steps']} | "
+                f"{src['window_cpu_seconds']:.0f} | | "
+                f"{g(src['J_end'], '{:.4f}')} | "
+                f"{src['surface_angle_mean_deg']:.2f} | "
+                f"{src['peak_speed_mean']:.3f} / {src['peak_speed_max']:.3f}"
+                f" | {src['lowest_p_grains']:.1f} "
+                f"({src['steps_with_negative_p_grains']}) | |")
+        name = r["coupling"] + (" " + ", ".join(
+            "`" + e.split(":", 1)[-1] + "`" for e in r["edits"])
+            if r["edits"] else "")
+        cells = [r["N"], f"{r['start']:g}–{r['start'] + 10:g}", name,
+                 r["steps"], g(r["cpu_seconds"], "{:.0f}"),
+                 g(r["pressure_solutions_per_step"], "{:.1f}")]
+        if ok:
+            cells += [
+                g(r["J_end"], "{:.4f}") + vs(r, "J_end"),
+                f"{r['surface_angle_mean_deg']:.2f}"
+                + vs(r, "surface_angle_mean_deg"),
+                f"{r['peak_speed_mean']:.3f}{vs(r, 'peak_speed_mean')}"
+                f" / {r['peak_speed_max']:.3f}"
+                f"{vs(r, 'peak_speed_max')}",
+                f"{r['lowest_p_grains']:.1f} "
+                f"({r['steps_with_negative_p_grains']})"]
+        else:
+            cells += ["", "", "", ""]
+        cells.append(r["status"])
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    return lines
+
+
 def profile_section():
     """The time shares of the whole chute runs made with OpenFOAM's
     profiling on (bench/harness chute --edit
     "system/controlDict:profiling={ active true; }")."""
-    path = BENCH / "coupling.json"
-    runs = [r for r in (json.loads(path.read_text()).get("whole_chute", {})
-                        .get("runs", []) if path.exists() else [])
+    runs = [r for r in coupling_runs("whole_chute")
             if r.get("profile_shares")]
     if not runs:
         return []
@@ -276,9 +354,7 @@ def profile_section():
 
 def spectra_section():
     """Ritz values of the Krylov coupling (bench/harness spectrum)."""
-    path = BENCH / "coupling.json"
-    runs = (json.loads(path.read_text()).get("krylov_spectra", {})
-            .get("runs", []) if path.exists() else [])
+    runs = coupling_runs("krylov_spectra")
     if not runs:
         return []
     lines = [
@@ -317,9 +393,7 @@ def harness_section():
     """The coupling harness's measurements (bench/coupling.json, written
     by bench/harness): every coupling against 200 correctors from the same
     state, over the same steps."""
-    path = BENCH / "coupling.json"
-    runs = (json.loads(path.read_text()).get("harness", {}).get("runs", [])
-            if path.exists() else [])
+    runs = coupling_runs("harness")
     if not runs:
         return []
     lines = [
@@ -478,6 +552,7 @@ def write(results, path):
         lines += ["", *section]
     for section in (harness_section(), spectra_section(),
                     whole_chute_section(), profile_section(),
+                    whole_drum_section(),
                     tutorials_section()):
         if section:
             lines += ["", *section]
