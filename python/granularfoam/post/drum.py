@@ -279,6 +279,63 @@ def lobes(case, time_name):
     return theta[peaks[body[peaks]]]
 
 
+def tension_where(case, names):
+    """Where the grains (phi^a < 1/2) are below zero pressure at the
+    written times `names`: per time with any, the lowest p, the grain cells
+    below zero, the lowest cell's distance to the nearest wall, to the
+    nearest corner and to the nearest air cell (phi^a >= 1/2) in cells, its speed relative to the
+    drum and lab position, the time's phase in the quarter turn, and the
+    largest granular viscosity and inertial number of the cells below
+    zero."""
+    out = []
+    for name in names:
+        X, Y, f = grid(case, name, ["p", "alpha.air", "U", "etaGranular",
+                                    "I"])
+        grains = f["alpha.air"] < 0.5
+        p = np.where(grains, f["p"], np.inf)
+        i, j = np.unravel_index(np.argmin(p), p.shape)
+        if p[i, j] >= 0:
+            continue
+        n = p.shape[0]
+        air = np.argwhere(~grains)
+        xc, yc = centres(X, Y)
+        out.append({
+            "t": float(name),
+            "quarter_turn_phase_s": float(name) % (PERIOD / 4),
+            "lowest_p": float(p[i, j]),
+            "grain_cells_below_zero": int(np.sum(p < 0)),
+            "eta_granular_below_zero_max": float(
+                f["etaGranular"][p < 0].max()),
+            "I_below_zero_max": float(f["I"][p < 0].max()),
+            "cells_to_wall": int(min(i, j, n - 1 - i, n - 1 - j)),
+            "cells_to_corner": int(max(min(i, n - 1 - i),
+                                       min(j, n - 1 - j))),
+            "cells_to_air": float(np.min(np.hypot(air[:, 0] - i,
+                                                  air[:, 1] - j))),
+            "speed_relative_to_drum": float(
+                relative_speed(f, xc, yc)[i, j]),
+            "position_m": [float(xc[i, j]), float(yc[i, j])]})
+    return out
+
+
+def tension_by_phase(t, low, bins=10):
+    """The steps' lowest grain pressure by the phase of the quarter turn
+    (t mod T/4, the drum's square repeats every quarter turn): per bin the
+    steps, those below zero, the lowest and the median."""
+    phase = np.mod(t, PERIOD / 4)
+    edges = np.linspace(0, PERIOD / 4, bins + 1)
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        s = (phase >= a) & (phase < b)
+        if s.any():
+            out.append({"phase_s": [float(a), float(b)],
+                        "steps": int(s.sum()),
+                        "below_zero": int(np.sum(low[s] < 0)),
+                        "lowest_p": float(low[s].min()),
+                        "median_p": float(np.median(low[s]))})
+    return out
+
+
 def lobe_period(case, names):
     """Period [s] of the lobes' rotation in the lab frame: the angular
     shift that best maps phi^s of the body on the circle at one write time
@@ -401,6 +458,9 @@ def summary(case):
     out["lowest_p_grains_steps_last_revolution"] = float(low[last].min())
     out["steps_with_negative_p_grains_last_revolution"] = [
         int(np.sum(low[last] < 0)), int(np.sum(last))]
+    out["tension_by_quarter_turn_phase_last_revolution"] = \
+        tension_by_phase(t[last], low[last])
+    out["tension_written_times_last_revolution"] = tension_where(case, names)
     out["lowest_p_grains_steps_all"] = float(low.min())
     out["steps_with_negative_p_grains_all"] = [int(np.sum(low < 0)),
                                                len(low)]
