@@ -886,30 +886,26 @@ def main(argv=None):
                     if not args.no_store:
                         store_spectra([e], command)
         return 0
-    if args.what == "chute":
+    if args.what == "drum" and not any(
+            Path(args.source).glob("processor[0-9]*")):
+        parser.error(f"--source {args.source}: no processor directories "
+                     "(a decomposed drum run)")
+    if args.what in ("chute", "drum"):
         try:
             for c in args.couplings:
                 coupling_settings(c)
         except ValueError as err:
             parser.error(str(err))
         for coupling in args.couplings:
-            e = whole_chute(coupling, args.end_time, args.sub_cycles,
-                            args.max_delta_t, args.edit)
+            if args.what == "chute":
+                e = whole_chute(coupling, args.end_time, args.sub_cycles,
+                                args.max_delta_t, args.edit)
+            else:
+                e = whole_drum(args.source, args.start, coupling, args.edit)
             print(json.dumps(e), flush=True)
             if not args.no_store:
-                store_whole([e], command)
-        return 0
-    if args.what == "drum":
-        try:
-            for c in args.couplings:
-                coupling_settings(c)
-        except ValueError as err:
-            parser.error(str(err))
-        for coupling in args.couplings:
-            e = whole_drum(args.source, args.start, coupling, args.edit)
-            print(json.dumps(e), flush=True)
-            if not args.no_store:
-                store_drum([e], command)
+                (store_whole if args.what == "chute" else store_drum)(
+                    [e], command)
         return 0
     if args.what == "states":
         failed = [e for e in (make_state(name, args.edit)
