@@ -227,10 +227,7 @@ Foam::KrylovVector Foam::KrylovStep::residual(const KrylovVector& x)
     U_.correctBoundaryConditions();
     p_.primitiveFieldRef() = x.p;
 
-    // H(U), once: the matrix's product with U is A U - H(U), A = 1/rAU
-    // its diagonal per volume (the sum fvMatrix's operator& forms)
-    const volVectorField H(s_.UEqn.H());
-    volVectorField HbyA(constrainHbyA(s_.rAU*H, U_, p_));
+    volVectorField HbyA(constrainHbyA(s_.rAU*s_.UEqn.H(), U_, p_));
     surfaceScalarField phiHbyA
     (
         granularCoupling::fluxHbyA(HbyA, s_.phiDdtCorr, U_, p_, s_.MRF)
@@ -245,7 +242,7 @@ Foam::KrylovVector Foam::KrylovStep::residual(const KrylovVector& x)
     r.u =
         s_.reconstruct(s_.faceForce*mesh_.magSf() - gradpf)
         ().primitiveField()
-      - (x.u/s_.rAU.primitiveField() - H.primitiveField());
+      - (s_.UEqn & U_)().primitiveField();
     r.u *= scaleU_;
     r.p = -fvc::div(phiHbyA - s_.rAUf*gradpf)().primitiveField();
     r.p *= scaleP_;
