@@ -183,12 +183,14 @@ STATES = {
     "drum50": _drum(8.75),
     "drum100": _drum(1.5, n=100),
     "drum100start": _drum(0.25, n=100),
+    "drum150start": _drum(0.25, n=150),
 }
 
 # The direction normal to the base (the layers and the chute: z); none for
 # the drum, whose walls turn: no base row, outlet or normal velocity there
 NORMAL = {"chute1": 2, "chute20": 2, "layer2d": 2, "layer2dSquare": 2,
-          "drum50": None, "drum100": None, "drum100start": None}
+          "drum50": None, "drum100": None, "drum100start": None,
+          "drum150start": None}
 
 
 def _tag(edits):
