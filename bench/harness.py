@@ -55,9 +55,10 @@ from pathlib import Path
 
 import numpy as np
 
-from granularfoam.foamio import (cell_centres, edit, parameters as
+from granularfoam.foamio import (cell_centres, edit, log_cost, parameters as
                                  read_parameters, read_field, read_text,
                                  run as foam, set_entry, time_names)
+from granularfoam.post import drum
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -591,17 +592,10 @@ def chute_entry(case, how, text, coupling, end_time, sub_cycles, max_delta_t,
     """The whole_chute entry of a run of the chute in case that ended as
     `how` with the log `text`."""
     from granularfoam.post.chute import outflow
-    steps = len(re.findall(r"^Time = ", text, re.M))
-    cpu = re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", text, re.M)
-    solutions = [int(n) for n in re.findall(
-        r"Pressure coupling: (\d+) pressure solutions", text)]
     entry = {"coupling": coupling, "end_time": float(end_time),
              "max_alpha_sub_cycles": sub_cycles,
-             "max_delta_t": max_delta_t, "edits": list(edits),
-             "steps": steps,
-             "cpu_seconds": float(cpu[-1]) if cpu else None,
-             "pressure_solutions_per_step":
-                 (sum(solutions) / len(solutions)) if solutions else None}
+             "max_delta_t": max_delta_t, "edits": list(edits)}
+    entry.update(log_cost(text))
     if how != "ok":
         times = re.findall(r"^Time = (\S+)", text, re.M)
         entry["status"] = (f"failed ({how}) at t = "
@@ -657,9 +651,6 @@ def store_whole(entries, command):
         entries, command)
 
 
-PERIOD = 10.0                   # s: one drum revolution at Omega = -pi/5
-
-
 def whole_drum(source, start, coupling, edits):
     """One revolution of a drum run from its written time `start`, on the
     source run's decomposition: the source's case (its processor
@@ -676,22 +667,22 @@ def whole_drum(source, start, coupling, edits):
     if case.exists():
         shutil.rmtree(case)
     shutil.copytree(source, case, ignore=_state_of_run(source, start_name))
-    set_entry(case, "system/drumParameters", "endTime", start + PERIOD)
-    set_entry(case, "system/drumParameters", "writeInterval", PERIOD)
+    set_entry(case, "system/drumParameters", "endTime", start + drum.PERIOD)
+    set_entry(case, "system/drumParameters", "writeInterval", drum.PERIOD)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
     for dictionary, entry, value in map(parse_edit, edits):
         apply_edit(case, dictionary, entry, value)
     print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
-          f"to {start + PERIOD:g} s", flush=True)
+          f"to {start + drum.PERIOD:g} s", flush=True)
     log = case / f"log.{SOLVER}"
     with open(log, "w") as out:
         rc = subprocess.call(
             ["mpirun", "-np", str(len(ranks)), SOLVER, "-parallel",
              "-case", str(case)], stdout=out, stderr=subprocess.STDOUT)
-    from granularfoam.post.drum import coupling as coupling_of
     entry = {"source": str(source), "N": n, "start": start,
-             "source_coupling": coupling_of(source), "coupling": coupling,
+             "end": start + drum.PERIOD,
+             "source_coupling": drum.coupling(source), "coupling": coupling,
              "edits": list(edits), "ranks": len(ranks)}
     entry.update(log_cost(log.read_text()))
     if rc != 0:
@@ -736,41 +727,13 @@ def _written(directory, t):
     return names[0]
 
 
-def log_cost(text, start=None, end=None):
-    """Steps, CPU seconds (ExecutionTime of the master) and pressure
-    solutions per step of a solver log, over the steps of (start, end]."""
-    steps, solutions, cpu, last, before = 0, [], 0.0, None, None
-    now = None
-    for line in text.splitlines():
-        if line.startswith("Time = "):
-            now = float(line.split()[2])
-        inside = now is not None and (start is None or now > start + 1e-9) \
-            and (end is None or now <= end + 1e-9)
-        if line.startswith("Time = ") and inside:
-            steps += 1
-        elif line.startswith("Pressure coupling: ") and inside:
-            solutions.append(int(line.split()[2]))
-        elif line.startswith("ExecutionTime = "):
-            seconds = float(line.split()[2])
-            if inside:
-                last = seconds
-            elif last is None:
-                before = seconds
-    if last is not None:
-        cpu = last - (before or 0.0)
-    return {"steps": steps, "cpu_seconds": cpu,
-            "pressure_solutions_per_step":
-                sum(solutions) / len(solutions) if solutions else None}
-
-
 def drum_window(case, start):
     """The rotatingDrum monitor of case over (start, start + T]: J at the
     end, the surface angle and the peak speed; the lowest pressure seen by
     the rheology in the grains over the steps; the CPU of the steps.
     None if the monitor ends before start + T."""
-    from granularfoam.post import drum
     m = drum.monitor(case)
-    end = start + PERIOD
+    end = start + drum.PERIOD
     if m["t"][-1] < end - 1e-9:
         return None
     w = (m["t"] > start + 1e-9) & (m["t"] <= end + 1e-9)
@@ -787,7 +750,8 @@ def drum_window(case, start):
             "lowest_p_grains": float(low[steps].min()),
             "steps_with_negative_p_grains": int(np.sum(low[steps] < 0)),
             "window_steps": sum(c["steps"] for c in cost),
-            "window_cpu_seconds": sum(c["cpu_seconds"] for c in cost)}
+            "window_cpu_seconds": sum(c["cpu_seconds"] or 0.0
+                                      for c in cost)}
 
 
 def store_drum(entries, command):

@@ -287,7 +287,7 @@ def whole_drum_section():
         if src and (r["source"], r["start"]) not in sources:
             sources[(r["source"], r["start"])] = True
             lines.append(
-                f"| {r['N']} | {r['start']:g}–{r['start'] + 10:g} | the "
+                f"| {r['N']} | {r['start']:g}–{r['end']:g} | the "
                 f"source run ({r['source_coupling']}) | "
                 f"{src['window_steps']} | "
                 f"{src['window_cpu_seconds']:.0f} | | "
@@ -299,7 +299,7 @@ def whole_drum_section():
         name = r["coupling"] + (" " + ", ".join(
             "`" + e.split(":", 1)[-1] + "`" for e in r["edits"])
             if r["edits"] else "")
-        cells = [r["N"], f"{r['start']:g}–{r['start'] + 10:g}", name,
+        cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
                  r["steps"], g(r["cpu_seconds"], "{:.0f}"),
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
         if ok:

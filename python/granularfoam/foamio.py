@@ -239,3 +239,38 @@ def volumes(case, function="volumes"):
     cols = list(zip(*rows))
     names = [re.sub(r"^volIntegrate\((.*)\)$", r"\1", h) for h in header]
     return cols[0], {n: cols[k] for k, n in enumerate(names) if k > 0}
+
+
+_SOLUTIONS = re.compile(r"^Pressure coupling: (\d+) pressure solutions")
+
+
+def log_cost(text, start=None, end=None):
+    """Steps, CPU seconds and pressure solutions per step of a solver log's
+    text (the master's, in a parallel run) over its steps with time in
+    (start, end] (all steps by default): the steps' "Time =" lines, the
+    last ExecutionTime of those steps less the one before them (None
+    without any), the mean of the steps' "Pressure coupling: N pressure
+    solutions" (None without any)."""
+    steps, solutions, last, before, now = 0, [], None, None, None
+    for line in text.splitlines():
+        if line.startswith("Time = "):
+            now = float(line.split()[2])
+        inside = now is not None \
+            and (start is None or now > start + 1e-9) \
+            and (end is None or now <= end + 1e-9)
+        if line.startswith("Time = ") and inside:
+            steps += 1
+        elif line.startswith("ExecutionTime = "):
+            seconds = float(line.split()[2])
+            if inside:
+                last = seconds
+            elif last is None:
+                before = seconds
+        elif inside:
+            m = _SOLUTIONS.match(line)
+            if m:
+                solutions.append(int(m.group(1)))
+    return {"steps": steps,
+            "cpu_seconds": None if last is None else last - (before or 0.0),
+            "pressure_solutions_per_step":
+                sum(solutions) / len(solutions) if solutions else None}

@@ -33,8 +33,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from scipy.signal import find_peaks  # noqa: E402
 
-from ..foamio import (function_table, parameters as _parameters,  # noqa: E402
-                      read_field, read_text, run, time_names)
+from ..foamio import (function_table, log_cost,  # noqa: E402
+                      parameters as _parameters, read_field, read_text, run,
+                      time_names)
 from .drumTension import step_table  # noqa: E402
 
 DPI = 150
@@ -283,10 +284,10 @@ def tension_where(case, names):
     """Where the grains (phi^a < 1/2) are below zero pressure at the
     written times `names`: per time with any, the lowest p, the grain cells
     below zero, the lowest cell's distance to the nearest wall, to the
-    nearest corner and to the nearest air cell (phi^a >= 1/2) in cells, its speed relative to the
-    drum and lab position, the time's phase in the quarter turn, and the
-    largest granular viscosity and inertial number of the cells below
-    zero."""
+    nearest corner and to the nearest air cell (phi^a >= 1/2) in cells,
+    its speed relative to the drum and lab position, the time's phase in
+    the quarter turn, and the largest granular viscosity and inertial
+    number of the cells below zero."""
     out = []
     for name in names:
         X, Y, f = grid(case, name, ["p", "alpha.air", "U", "etaGranular",
@@ -407,13 +408,9 @@ def run_cost(case):
     ExecutionTime (of the master process, in a parallel run)."""
     logs = sorted(Path(case).glob("log.granularSegregationFoam*"))
     assert logs, f"no solver log in {case}"
-    steps, cpu = 0, 0.0
-    for log in logs:
-        text = read_text(log)
-        steps += len(re.findall(r"^Time = ", text, re.M))
-        times = re.findall(r"^ExecutionTime = ([0-9.eE+-]+) s", text, re.M)
-        cpu += float(times[-1]) if times else 0.0
-    return {"steps": steps, "cpu_seconds": cpu}
+    costs = [log_cost(read_text(log)) for log in logs]
+    return {"steps": sum(c["steps"] for c in costs),
+            "cpu_seconds": sum(c["cpu_seconds"] or 0.0 for c in costs)}
 
 
 def summary(case):
