@@ -1,8 +1,11 @@
 """Unit tier of the square drum's post-processing (granularfoam.post.drum):
-where the grains are below zero pressure, on a synthetic 6 x 6 drum, and
+where the grains are below zero pressure and how the pattern repeats over a
+quarter turn, on a synthetic 6 x 6 drum, and
 the steps' grain pressure by the phase of the quarter turn.
 """
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -74,3 +77,75 @@ def test_tension_by_phase():
     assert [b["below_zero"] for b in out] == [1, 1, 1]
     assert [b["lowest_p"] for b in out] == [-1.0, -3.0, -2.0]
     assert [b["median_p"] for b in out] == [0.0, 0.5, -2.0]
+
+
+def _turned_grid(t):
+    """Corners (N+1, N+1) of a 6 x 6 drum turned by Omega t about its axis,
+    in blockMesh's order (x first)."""
+    edges = np.linspace(-0.1, 0.1, N + 1)
+    X0, Y0 = np.meshgrid(edges, edges)
+    c, s = math.cos(OMEGA * t), math.sin(OMEGA * t)
+    return c * X0 - s * Y0, s * X0 + c * Y0
+
+
+def test_quarter_turn_map():
+    """The map brings the cells a quarter turn later back to the lab
+    positions the cells held before."""
+    xc0, yc0 = post.centres(*_turned_grid(1.0))
+    xc1, yc1 = post.centres(*_turned_grid(1.0 + post.PERIOD / 4))
+    assert np.allclose(post.quarter_turn_map(xc1), xc0, atol=1e-12)
+    assert np.allclose(post.quarter_turn_map(yc1), yc0, atol=1e-12)
+
+
+@pytest.mark.parametrize("frame", ["lab", "drum"])
+def test_quarter_turn_changes(monkeypatch, frame):
+    """A pattern fixed in the lab (phi^s a function of the lab position)
+    does not change over a quarter turn in the lab but does in the drum;
+    one frozen in the drum the other way round.  The pattern has no
+    four-fold symmetry, so that neither change vanishes by symmetry."""
+    times = {"1": 1.0, "3.5": 1.0 + post.PERIOD / 4}
+
+    def grid(case, name, names):
+        X, Y = _turned_grid(times[name])
+        if frame == "lab":
+            x, y = post.centres(X, Y)
+        else:
+            x, y = post.centres(*_turned_grid(0.0))
+        small = 0.5 + 2 * x + 3 * y ** 2        # within (0, 1) on the drum
+        air = np.zeros((N, N))
+        return X, Y, {"alpha.small": small, "alpha.large": 1 - small,
+                      "alpha.air": air}
+
+    monkeypatch.setattr(post, "grid", grid)
+    monkeypatch.setattr(post, "_time_name", lambda case, t: _name(times, t))
+    out = post.quarter_turn_changes("drum", ["1"])
+    assert out["pairs"] == 1
+    assert out["variation"] > 0.02
+    still, moving = ("lab", "drum") if frame == "lab" else ("drum", "lab")
+    assert out[still] < 1e-12
+    assert out[moving] > 0.1 * out["variation"]
+
+
+def _name(times, t):
+    """The written time named t, as _time_name (AssertionError if none)."""
+    names = [k for k, v in times.items() if abs(v - t) < 1e-9]
+    assert names, f"no time directory at t = {t}"
+    return names[0]
+
+
+@pytest.mark.parametrize("folder", ["measured", "etaMax", "N100", "Krylov"])
+def test_readme_tables_are_rendered_from_drum_json(folder):
+    """Each results table of the drum README is what its drum.json holds,
+    rendered by granularfoam.post.drum (--readme)."""
+    project = Path(__file__).resolve().parents[2]
+    numbers = json.loads((project / "validation" / "squareDrum" / "measured"
+                          / ("" if folder == "measured" else folder)
+                          / "drum.json").read_text())
+    text = (project / "tutorials" / "squareDrum" / "README.md").read_text()
+    begin = post.README_BEGIN.format(folder)
+    end = post.README_END.format(folder)
+    assert begin in text and end in text, f"no {folder} table in the README"
+    table = text[text.index(begin) + len(begin):text.index(end)].strip()
+    assert table == post.results_table(numbers), (
+        f"the README's {folder} table differs from its drum.json: run "
+        "granularfoam.post.drum with --readme")

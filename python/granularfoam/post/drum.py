@@ -364,6 +364,51 @@ def lobe_period(case, names):
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
+def quarter_turn_map(field):
+    """The cells' values a quarter turn of the drum later moved back to
+    where the cells were: the drum turns clockwise, so the cell that
+    reaches, after a quarter turn, the lab position cell (i, j) held
+    before lies a quarter turn anticlockwise of it in the block
+    (np.rot90 of the (N, N) arrays of grid)."""
+    return np.rot90(field)
+
+
+def quarter_turn_changes(case, names):
+    """How the small-grain pattern repeats over a quarter turn (T/4, the
+    drum's square repeats in the lab every quarter turn).  For each written
+    time t of names with t + T/4 written: the mean |phi^s(t + T/4) -
+    phi^s(t)| over the grains of both (phi^a < 1/2) in the lab frame
+    ('lab': small when the pattern is locked to the walls' quarter-turn
+    forcing) and in the drum frame ('drum': small when it is frozen in the
+    drum), the pattern's four-fold asymmetry in the drum frame
+    ('asymmetry': phi^s against itself a quarter turn on) and the mean
+    |phi^s - its mean| over the grains ('variation', the scale).  Means
+    over the times."""
+    rows = []
+    fields = ["alpha.small", "alpha.large", "alpha.air"]
+    for a in names:
+        try:
+            b = _time_name(case, float(a) + PERIOD / 4)
+        except AssertionError:
+            continue
+        s0 = small_fraction(grid(case, a, fields)[2])
+        s1 = small_fraction(grid(case, b, fields)[2])
+        moved, turned = quarter_turn_map(s1), quarter_turn_map(s0)
+
+        def change(x, y):
+            both = np.isfinite(x) & np.isfinite(y)
+            return float(np.mean(np.abs(x - y)[both]))
+        grains = s0[np.isfinite(s0)]
+        rows.append((change(moved, s0), change(s1, s0), change(turned, s0),
+                     float(np.mean(np.abs(grains - grains.mean())))))
+    if not rows:
+        return None
+    m = np.mean(rows, axis=0)
+    return {"lab": float(m[0]), "drum": float(m[1]),
+            "asymmetry": float(m[2]), "variation": float(m[3]),
+            "pairs": len(rows)}
+
+
 def cell_areas(X, Y):
     """Areas (N, N) of the moved block's cells from their corners (grid),
     by the shoelace formula."""
@@ -472,6 +517,8 @@ def summary(case):
                                               float(np.max(depths))]
     out["depth_I_above_I1_last_revolution_m"] = float(
         np.mean([r["depth_I_above_I1"] for r in rows]))
+    out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
+        case, names)
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -676,6 +723,11 @@ def results_table(numbers):
          if "flowing_depth_last_revolution_m" not in r else
          f"{r['flowing_depth_last_revolution_m'][0] * 100:.2f} / "
          f"{r['flowing_depth_last_revolution_m'][1] * 100:.2f}"),
+        ("mean change of φ^s over a quarter turn, last revolution, in the "
+         "lab / in the drum (its mean deviation)", lambda r: "–"
+         if not r.get("quarter_turn_change_last_revolution") else
+         "{lab:.3f} / {drum:.3f} ({variation:.3f})".format(
+             **r["quarter_turn_change_last_revolution"])),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
         ("lowest p in the grains, written times of the last revolution [Pa]",
