@@ -214,13 +214,16 @@ def whole_chute_section():
         "(155 × 40) from rest, serial, once per coupling; the outflow at the "
         "end against Bagnold (5.4), Gray & Chugunov (5.8) and the "
         "depth-averaged φ^s of (5.10) (0.6744), and its change over the "
-        "last written second. Numbers in `bench/coupling.json` "
+        "last written second (u: of its maximum; φ^s: the largest absolute "
+        "change). CPU seconds compare between runs of one date, which ran "
+        "side by side on the two cores. Numbers in `bench/coupling.json` "
         "(`whole_chute`).",
         "",
         "| coupling | maxAlphaSubCycles | maxDeltaT [s] | end [s] | steps | "
         "CPU [s] | pressure solutions / step | u vs (5.4) | φ^s vs (5.8) | "
-        "φ̄^s | u change, last second | status |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "φ̄^s | u change, last second | φ^s change, last second | date | "
+        "status |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
 
     g = dash_or
@@ -243,6 +246,9 @@ def whole_chute_section():
                  if ok else "",
                  g(r.get("outlet_change_last_interval_u"), "{:.2g}")
                  if ok else "",
+                 g(r.get("outlet_change_last_interval_phis"), "{:.2g}")
+                 if ok else "",
+                 g(r.get("date"), "{}"),
                  r["status"]]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     return lines
