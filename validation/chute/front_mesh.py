@@ -15,14 +15,15 @@ import json
 from pathlib import Path
 
 from granularfoam.post import chute
-from grain_size import front
+from grain_size import PISO_SETTING, front
 
 SETUP = ("for NX in 155 620; do cp -r tutorials/chute chute_nx$NX && "
-         "(cd chute_nx$NX && ./Allrun -serial -nx $NX -endTime 8 "
-         "-writeInterval 1 && ./Allrun-movingFrame); done; cp -r "
+         "(cd chute_nx$NX && ./Allrun -serial " + PISO_SETTING + " -nx $NX "
+         "-endTime 8 -writeInterval 1 && ./Allrun-movingFrame); done; cp -r "
          "tutorials/chute chute_d143_nx800 && (cd chute_d143_nx800 && "
-         "./Allrun -np 2 -d 143e-6 -Lx 0.8 -nx 800 -endTime 4 -writeInterval "
-         "0.5 && ./Allrun-movingFrame -start 4 -endTime 14 -parallel)")
+         "./Allrun -np 2 " + PISO_SETTING + " -d 143e-6 -Lx 0.8 -nx 800 -endTime 4 "
+         "-writeInterval 0.5 && ./Allrun-movingFrame -start 4 -endTime 14 "
+         "-parallel)")
 
 
 def main(argv=None):

@@ -16,12 +16,13 @@ from pathlib import Path
 
 from granularfoam.foamio import read_text
 from granularfoam.post.chute import outflow
+from grain_size import PISO_SETTING
 
 
 SETUP = ("for P in 1e-3 1e-6; do cp -r tutorials/chute p$P && "
          "(cd p$P && foamDictionary 0.orig/p_rgh -entry "
-         "boundaryField.top.p -set \"uniform $P\" && ./Allrun -serial); "
-         "done")
+         "boundaryField.top.p -set \"uniform $P\" && ./Allrun -serial "
+         + PISO_SETTING + "); done")
 
 
 def top_pressure(case):
