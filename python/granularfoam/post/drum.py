@@ -386,13 +386,18 @@ def quarter_turn_changes(case, names):
     over the times."""
     rows = []
     fields = ["alpha.small", "alpha.large", "alpha.air"]
+    read = {}       # phi^s by time name: each written time read once
+
+    def small(name):
+        if name not in read:
+            read[name] = small_fraction(grid(case, name, fields)[2])
+        return read[name]
     for a in names:
         try:
             b = _time_name(case, float(a) + PERIOD / 4)
         except AssertionError:
             continue
-        s0 = small_fraction(grid(case, a, fields)[2])
-        s1 = small_fraction(grid(case, b, fields)[2])
+        s0, s1 = small(a), small(b)
         moved, turned = quarter_turn_map(s1), quarter_turn_map(s0)
 
         def change(x, y):
