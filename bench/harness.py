@@ -43,6 +43,7 @@ judged against its own converged step.  See bench/README.md.
 """
 import argparse
 import datetime
+import hashlib
 import json
 import math
 import platform
@@ -194,8 +195,19 @@ NORMAL = {"chute1": 2, "chute20": 2, "layer2d": 2, "layer2dSquare": 2,
           "drum150start": None}
 
 
+# The longest edits' part of a directory name
+TAG_LENGTH = 100
+
+
 def _tag(edits):
-    return "-".join(re.sub(r"[^\w.]+", "_", e) for e in edits)
+    """A directory-name part for the edits: readable, and for long edits
+    (whole solver dictionaries) shortened with a hash of the whole so that
+    the run directories stay within the file system's 255 characters."""
+    tag = "-".join(re.sub(r"[^\w.]+", "_", e) for e in edits)
+    if len(tag) <= TAG_LENGTH:
+        return tag
+    digest = hashlib.sha1(tag.encode()).hexdigest()[:10]
+    return f"{tag[:TAG_LENGTH - 11]}_{digest}"
 
 
 def state_dir(name, edits=()):
