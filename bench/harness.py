@@ -31,6 +31,10 @@ written time of a decomposed drum run with each coupling and records its
 cost, J, surface angle, peak speed and grain pressure against the run's
 own over the same revolution under "whole_drum".
 
+A state named RUN@TIME is the written time TIME of the run in the
+directory RUN (reconstructed, serial): `states --states RUN@TIME` copies
+it, so that a coupling can be judged on a developed flow of a long run.
+
 `states` writes the states into bench/work/harness/states (git-ignored);
 `run` appends its measurements to bench/coupling.json under "harness"
 (an entry with the same state, step, steps, coupling and edits is
@@ -210,9 +214,60 @@ def _tag(edits):
     return f"{tag[:TAG_LENGTH - 11]}_{digest}"
 
 
+# A state taken from a written time of a run: RUN@TIME
+RUN_STATE = re.compile(r"(.+)@([0-9.eE+-]+)")
+
+
+def run_state(name):
+    """(run directory, time name) of a state named RUN@TIME; None for the
+    states of STATES."""
+    m = RUN_STATE.fullmatch(name)
+    return (Path(m.group(1)), m.group(2)) if m else None
+
+
+def state_name(text):
+    """argparse type of a state: a name of STATES or RUN@TIME."""
+    if text in STATES or run_state(text):
+        return text
+    raise argparse.ArgumentTypeError(
+        f"state '{text}' is not one of {', '.join(sorted(STATES))} "
+        "or RUN@TIME (a written time of a run)")
+
+
+def normal_of(name, edits=()):
+    """The axis normal to the base of a state (None for the drum)."""
+    if name in NORMAL:
+        return NORMAL[name]
+    drum = (state_dir(name, edits) / "system" / "drumParameters").exists()
+    return None if drum else 2
+
+
+def state_base(name):
+    """The state's part of directory names: RUNNAME_tTIME for RUN@TIME."""
+    run = run_state(name)
+    return f"{run[0].name}_t{run[1]}" if run else name
+
+
 def state_dir(name, edits=()):
-    """The state `name` of the case with the edits made from its start."""
-    return WORK / "states" / (f"{name}_{_tag(edits)}" if edits else name)
+    """The state `name` of the case with the edits made from its start
+    (for RUN@TIME: made at TIME)."""
+    base = state_base(name)
+    return WORK / "states" / (f"{base}_{_tag(edits)}" if edits else base)
+
+
+def copy_run_state(name, case):
+    """Copy the written time of the run RUN@TIME (its reconstructed
+    fields, constant and system) to case; return the time name."""
+    run, time_name = run_state(name)
+    source = run / time_name
+    if not (source / "U").exists() and not (source / "U.gz").exists():
+        raise ValueError(f"state {name}: no reconstructed fields in "
+                         f"{source} (reconstructPar -time {time_name})")
+    for part in ("constant", "system"):
+        shutil.copytree(run / part, case / part,
+                        ignore=shutil.ignore_patterns("polyMesh.bak"))
+    shutil.copytree(source, case / time_name)
+    return time_name
 
 
 def run_solver(case, timeout):
@@ -235,6 +290,13 @@ def make_state(name, edits=()):
     if case.exists():
         shutil.rmtree(case)
     case.parent.mkdir(parents=True, exist_ok=True)
+    if run_state(name):
+        time_name = copy_run_state(name, case)
+        for dictionary, entry, value in map(parse_edit, edits):
+            apply_edit(case, dictionary, entry, value)
+        cell_centres(case, time_name)
+        print(f"harness: state {name}: t = {time_name}", flush=True)
+        return None
     end_time = STATES[name](case)
     for dictionary, entry, value in map(parse_edit, edits):
         apply_edit(case, dictionary, entry, value)
@@ -323,7 +385,7 @@ def apply_edit(case, dictionary, entry, value):
 
 
 def run_name(state, dt, steps, coupling, edits):
-    return (f"{state}_dt{dt:g}_n{steps}_{coupling}"
+    return (f"{state_base(state)}_dt{dt:g}_n{steps}_{coupling}"
             + (f"_{_tag(edits)}" if edits else ""))
 
 
@@ -464,7 +526,7 @@ def measure(state, dt, steps, coupling, edits, references,
                  cpu_ms_per_step=ms, reference_cpu_ms_per_step=ref_ms)
     if status == "ok":
         entry.update(compare(case, ref, state_dir(state, edits),
-                             NORMAL[state]))
+                             normal_of(state, edits)))
     return _rounded(entry)
 
 
@@ -787,12 +849,12 @@ def main(argv=None):
                                      description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="what", required=True)
     ps = sub.add_parser("states", help="write the states")
-    ps.add_argument("--states", nargs="+", choices=sorted(STATES),
+    ps.add_argument("--states", nargs="+", type=state_name,
                     default=["chute1", "layer2d"])
     ps.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
     pr = sub.add_parser("run", help="measure couplings from the states")
-    pr.add_argument("--states", nargs="+", choices=sorted(STATES),
+    pr.add_argument("--states", nargs="+", type=state_name,
                     default=["chute1", "layer2d"])
     pr.add_argument("--dt", nargs="+", type=float, default=[1e-3, 4e-3])
     pr.add_argument("--steps", nargs="+", type=int, default=[1, 10])
@@ -832,7 +894,7 @@ def main(argv=None):
                     help="print, do not write bench/coupling.json")
     pk = sub.add_parser("spectrum", help="Ritz values of the Krylov "
                         "coupling's preconditioned operator")
-    pk.add_argument("--states", nargs="+", choices=sorted(STATES),
+    pk.add_argument("--states", nargs="+", type=state_name,
                     default=["chute1", "layer2d", "layer2dSquare"])
     pk.add_argument("--dt", nargs="+", type=float, default=[4e-3])
     pk.add_argument("--preconditioners", nargs="+", default=["BFBt", "PISO"],
@@ -886,8 +948,11 @@ def main(argv=None):
                     [e], command)
         return 0
     if args.what == "states":
-        failed = [e for e in (make_state(name, args.edit)
-                              for name in args.states) if e]
+        try:
+            failed = [e for e in (make_state(name, args.edit)
+                                  for name in args.states) if e]
+        except ValueError as err:
+            parser.error(str(err))
         if failed:
             store(failed, command)
         return 1 if failed else 0
