@@ -264,8 +264,7 @@ def copy_run_state(name, case):
         raise ValueError(f"state {name}: no reconstructed fields in "
                          f"{source} (reconstructPar -time {time_name})")
     for part in ("constant", "system"):
-        shutil.copytree(run / part, case / part,
-                        ignore=shutil.ignore_patterns("polyMesh.bak"))
+        shutil.copytree(run / part, case / part)
     shutil.copytree(source, case / time_name)
     return time_name
 
@@ -291,26 +290,23 @@ def make_state(name, edits=()):
         shutil.rmtree(case)
     case.parent.mkdir(parents=True, exist_ok=True)
     if run_state(name):
-        time_name = copy_run_state(name, case)
-        for dictionary, entry, value in map(parse_edit, edits):
-            apply_edit(case, dictionary, entry, value)
-        cell_centres(case, time_name)
-        print(f"harness: state {name}: t = {time_name}", flush=True)
-        return None
-    end_time = STATES[name](case)
-    for dictionary, entry, value in map(parse_edit, edits):
-        apply_edit(case, dictionary, entry, value)
-    set_entry(case, "system/controlDict", "writePrecision", 17)
-    print(f"harness: state {name}: running to t = {end_time} s", flush=True)
-    how, text = run_solver(case, 6 * 3600)
-    if how != "ok":
-        times = re.findall(r"^Time = (\S+)", text, re.M)
-        status = (f"the state failed ({how}) at t = "
-                  f"{times[-1] if times else 0} s of {end_time} s")
-        print(f"harness: state {name}: {status}", flush=True)
-        return {"state": name, "time": float(end_time), "dt": None,
-                "steps": 0, "coupling": "state", "edits": list(edits),
-                "status": status}
+        copy_run_state(name, case)
+        apply_edits(case, edits)
+    else:
+        end_time = STATES[name](case)
+        apply_edits(case, edits)
+        set_entry(case, "system/controlDict", "writePrecision", 17)
+        print(f"harness: state {name}: running to t = {end_time} s",
+              flush=True)
+        how, text = run_solver(case, 6 * 3600)
+        if how != "ok":
+            times = re.findall(r"^Time = (\S+)", text, re.M)
+            status = (f"the state failed ({how}) at t = "
+                      f"{times[-1] if times else 0} s of {end_time} s")
+            print(f"harness: state {name}: {status}", flush=True)
+            return {"state": name, "time": float(end_time), "dt": None,
+                    "steps": 0, "coupling": "state", "edits": list(edits),
+                    "status": status}
     time_name = latest_time(case)
     cell_centres(case, time_name)
     print(f"harness: state {name}: t = {time_name}", flush=True)
@@ -382,6 +378,12 @@ def apply_edit(case, dictionary, entry, value):
          [(r"(?:max|n)AlphaSubCycles\s+\d+;",
            f"maxAlphaSubCycles {value};" if int(value)
            else "nAlphaSubCycles 1;")])
+
+
+def apply_edits(case, edits):
+    """Make every DICT:ENTRY=VALUE edit in case."""
+    for dictionary, entry, value in map(parse_edit, edits):
+        apply_edit(case, dictionary, entry, value)
 
 
 def run_name(state, dt, steps, coupling, edits):
@@ -651,8 +653,7 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
                    sub_cycles)
     if max_delta_t:
         set_entry(case, "system/controlDict", "maxDeltaT", max_delta_t)
-    for dictionary, entry, value in map(parse_edit, edits):
-        apply_edit(case, dictionary, entry, value)
+    apply_edits(case, edits)
     shutil.copytree(case / "0.orig", case / "0")
     foam(case, "blockMesh")
     print(f"harness: chute {tag}: running to t = {end_time} s", flush=True)
@@ -745,8 +746,7 @@ def whole_drum(source, start, coupling, edits):
     set_entry(case, "system/drumParameters", "writeInterval", drum.PERIOD)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
-    for dictionary, entry, value in map(parse_edit, edits):
-        apply_edit(case, dictionary, entry, value)
+    apply_edits(case, edits)
     print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
           f"to {start + drum.PERIOD:g} s", flush=True)
     log = case / f"log.{SOLVER}"
