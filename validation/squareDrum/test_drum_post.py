@@ -149,3 +149,31 @@ def test_readme_tables_are_rendered_from_drum_json(folder):
     assert table == post.results_table(numbers), (
         f"the README's {folder} table differs from its drum.json: run "
         "granularfoam.post.drum with --readme")
+
+
+def test_J_series_keeps_the_finite_samples_on_its_step():
+    """The monitor's J at the multiples of 0.25 s, the nan of a restart's
+    first revolution left out."""
+    t = np.round(np.arange(0.05, 2.0001, 0.05), 10)
+    J = 0.1 * t
+    J[(t > 0.9) & (t < 1.6)] = np.nan
+    out = post.J_series({"t": t, "J": J})
+    assert out["t"] == [0.25, 0.5, 0.75, 1.75, 2.0]
+    assert out["J"] == pytest.approx([0.025, 0.05, 0.075, 0.175, 0.2])
+
+
+def test_figure13_draws_every_run_of_the_results_file(tmp_path):
+    """Figure 13 comes from drum.json: a run with its J series as a curve,
+    one without it from J at each revolution (nulls left out); the other
+    entries (the tension windows) are not runs."""
+    numbers = {
+        "N100_a": {"N": 100, "J_revolution": {"10": 0.1, "20": None,
+                                              "30": 0.03}},
+        "N50_b": {"N": 50, "J_revolution": {"10": 0.09},
+                  "J_series": {"t": [0.25, 0.5], "J": [0.0, 0.01]}},
+        "tension": {"N100K_CC20": {"lowest": -26}},
+    }
+    drawn = post.figure13(numbers, tmp_path / "figure13.png")
+    assert (tmp_path / "figure13.png").stat().st_size > 0
+    assert drawn == [("N50_b", [0.25, 0.5], [0.0, 0.01]),
+                     ("N100_a", [10.0, 30.0], [0.1, 0.03])]

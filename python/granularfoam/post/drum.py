@@ -9,7 +9,9 @@ OpenFOAM) and the ascii fields and moved points of the time directories.
 
     /usr/bin/python3 -m granularfoam.post.drum CASE [CASE ...] [--out DIR] [--readme README]
 
-writes figure13.png (J(t) of every case given), and for every case, keyed
+writes the numbers of every case into OUT/drum.json and figure13.png (J(t)
+of every run in OUT/drum.json, from its J_series or, for an entry without
+one, J at each revolution), and for every case, keyed
 by its mesh, coupling, cap and the advection scheme when it is not the
 tutorial's (N50_30correctors_etaMax3000, N50_30correctors_etaMax300_linear,
 N100_KrylovCahouetChabard20_etaMax3000),
@@ -45,6 +47,7 @@ ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
+J_SERIES_STEP = 0.25            # s, J(t) kept in drum.json for figure 13
 
 
 # --------------------------------------------------------------------------
@@ -451,6 +454,17 @@ def revolution_change(case, m, t):
     return math.nan if J is None else J
 
 
+def J_series(m, step=J_SERIES_STEP):
+    """J(t) of the monitor m at the multiples of step (s) where it is
+    finite, for the results file: {'t': [...], 'J': [...]} (4 digits).
+    After a restart the monitor has J only where t - T is a written time
+    (nan between), so those stretches are thinned to those points."""
+    k = np.round(m["t"] / step)
+    keep = (np.abs(m["t"] - k * step) < 1e-6) & np.isfinite(m["J"])
+    return {"t": [round(float(x), 6) for x in m["t"][keep]],
+            "J": [float(f"{x:.4g}") for x in m["J"][keep]]}
+
+
 def run_cost(case):
     """Steps and CPU seconds of the run, from the solver's logs in case
     (log.granularSegregationFoam and its continuations log.*Foam.*): the
@@ -477,6 +491,7 @@ def summary(case):
     out["J_revolution"] = {
         f"{k * PERIOD:g}": revolution_change(case, m, k * PERIOD)
         for k in range(1, int(m["t"][-1] / PERIOD + 1e-9) + 1)}
+    out["J_series"] = J_series(m)
     for ph in ("air", "small", "large"):
         out[f"volume_drift_{ph}"] = float(
             np.max(np.abs(v[ph] / v[ph][0] - 1)))
@@ -556,23 +571,37 @@ def _save(fig, out):
     assert out.is_file() and out.stat().st_size > 0, out
 
 
-def figure13(cases, out):
-    """J(t) of (7.6) for every case (figure 13).  After a restart J exists
-    only where t - T is a written time, one point in 12 (nan between):
-    the finite points are joined."""
+def figure13(numbers, out):
+    """J(t) of (7.6) of every run of the results file (drum.json's run
+    entries; figure 13): the monitor's series where the entry has one
+    (J_series), else J at each revolution (J_revolution), marked.  Returns
+    what was drawn: [(key, t, J), ...]."""
+    runs = sorted(((k, v) for k, v in numbers.items()
+                   if isinstance(v, dict) and "N" in v),
+                  key=lambda kv: (kv[1]["N"], kv[0]))
+    drawn = []
     fig, ax = plt.subplots(figsize=(6.5, 3.5))
-    for case in cases:
-        m = monitor(case)
-        ok = np.isfinite(m["J"])
-        ax.plot(m["t"][ok], m["J"][ok],
-                label=label(case).replace("_", ", "))
+    for key, r in runs:
+        if r.get("J_series"):
+            t, J = r["J_series"]["t"], r["J_series"]["J"]
+            style = dict(ls="-")
+        else:
+            t = [float(k) for k in r["J_revolution"]]
+            J = list(r["J_revolution"].values())
+            style = dict(ls="--", marker="o", ms=3)
+        ok = [(a, b) for a, b in zip(t, J) if b is not None
+              and math.isfinite(b)]
+        t, J = [a for a, _ in ok], [b for _, b in ok]
+        ax.plot(t, J, label=key.replace("_", ", "), **style)
+        drawn.append((key, t, J))
     ax.set_xlabel("t [s]")
     ax.set_ylabel(r"$\mathcal{J}(t)$  (7.6)")
     ax.set_xlim(0, None)
     ax.set_ylim(0, None)
-    ax.legend()
+    ax.legend(fontsize=7)
     ax.set_title("Change of the small-grain fraction over one revolution")
     _save(fig, out)
+    return drawn
 
 
 def figure_cases(cases, out, n_times=4):
@@ -790,7 +819,6 @@ def main(argv=None):
                                               n_correctors(c),
                                               parameters(c)["etaMax"]))
     out = args.out or cases[-1] / "figures"
-    figure13(cases, out / "figure13.png")
     if len(cases) > 1:
         figure_cases(cases, out / "settings.png")
     numbers = {}
@@ -808,6 +836,7 @@ def main(argv=None):
     data = json.loads(path.read_text()) if path.exists() else {}
     data.update(numbers)
     path.write_text(json.dumps(data, indent=2) + "\n")
+    figure13(data, out / "figure13.png")
     if args.readme:
         write_readme(args.readme, data, out.name)
     print(json.dumps(numbers, indent=2))
