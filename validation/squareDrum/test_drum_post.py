@@ -177,3 +177,27 @@ def test_figure13_draws_every_run_of_the_results_file(tmp_path):
     assert (tmp_path / "figure13.png").stat().st_size > 0
     assert drawn == [("N50_b", [0.25, 0.5], [0.0, 0.01]),
                      ("N100_a", [10.0, 30.0], [0.1, 0.03])]
+
+
+def test_figure_revolutions_draws_the_written_revolutions(monkeypatch,
+                                                          tmp_path):
+    """phi^s at the revolutions written (10 and 20 s of a run at 25 s);
+    a run that has not reached 10 s has no such figure."""
+    times = {"5": 5.0, "10": 10.0, "20": 20.0, "25": 25.0}
+
+    def grid(case, name, names):
+        X, Y = _turned_grid(0.0)
+        x, _ = post.centres(X, Y)
+        small = 0.5 + 2 * x
+        return X, Y, {"alpha.small": small, "alpha.large": 1 - small,
+                      "alpha.air": np.zeros((N, N))}
+
+    monkeypatch.setattr(post, "grid", grid)
+    monkeypatch.setattr(post, "_time_name", lambda case, t: _name(times, t))
+    monkeypatch.setattr(post, "label", lambda case: "N6_test")
+    out = tmp_path / "revolutions.png"
+    assert post.figure_revolutions("drum", out) == [10.0, 20.0]
+    assert out.stat().st_size > 0
+    del times["10"], times["20"]
+    with pytest.raises(AssertionError, match="has not written"):
+        post.figure_revolutions("drum", tmp_path / "none.png")

@@ -15,8 +15,9 @@ one, J at each revolution), and for every case, keyed
 by its mesh, coupling, cap and the advection scheme when it is not the
 tutorial's (N50_30correctors_etaMax3000, N50_30correctors_etaMax300_linear,
 N100_KrylovCahouetChabard20_etaMax3000),
-figure10, figure11 and the
-lobes plot, and its numbers into drum.json; with several cases also
+figure10 and figure11 (a run that reached 80 s), the
+lobes plot and revolutions (phi^s at t = 10, 20, ... s), and its numbers
+into drum.json; with several cases also
 settings.png (phi^s and the shear rate of each at its last common written
 times); with --readme README the runs of OUT/drum.json are rendered into
 that README between its markers named after OUT's folder
@@ -266,6 +267,15 @@ def _body(f):
     return (f["alpha.air"] < 0.5) & (f["I"] < I1)
 
 
+def _has_time(case, t):
+    """Whether case has a written time t."""
+    try:
+        _time_name(case, t)
+    except AssertionError:
+        return False
+    return True
+
+
 def lobes(case, time_name):
     """Small-rich lobes crossing the LOBE_RING circle at a time: their lab
     angles [rad].  A lobe is a peak of phi^s of prominence LOBE_PROMINENCE
@@ -431,10 +441,9 @@ def change_over_period(case, t, period=PERIOD):
     sum |phi^s(t) - phi^s(t - T)| V / sum V, phi^s the field the monitor
     follows (alpha.small), the cells fixed points of the turning drum.
     None when either time is not written."""
-    try:
-        now, before = _time_name(case, t), _time_name(case, t - period)
-    except AssertionError:
+    if not (_has_time(case, t) and _has_time(case, t - period)):
         return None
+    now, before = _time_name(case, t), _time_name(case, t - period)
     X, Y, f = grid(case, now, ["alpha.small"])
     _, _, f0 = grid(case, before, ["alpha.small"])
     V = cell_areas(X, Y)
@@ -675,6 +684,31 @@ def figure11(case, out):
     _save(fig, out)
 
 
+def figure_revolutions(case, out):
+    """phi^s at the end of every revolution written (t = 10, 20, ... s),
+    the drum back in its starting orientation each time: how the pattern
+    develops, and figure 11(a) at 10 s, for a run that has not reached
+    80 s as well.  Returns the times drawn."""
+    times = [k * PERIOD for k in range(1, 9)
+             if _has_time(case, k * PERIOD)]
+    assert times, f"{case} has not written t = {PERIOD:g} s"
+    fig, axes = plt.subplots(2, 4, figsize=(10, 5.4))
+    for ax in axes.flat:
+        ax.set_axis_off()
+    for ax, t in zip(axes.flat, times):
+        X, Y, f = grid(case, _time_name(case, t),
+                       ["alpha.small", "alpha.large", "alpha.air"])
+        pc = ax.pcolormesh(X, Y, small_fraction(f), cmap="viridis",
+                           vmin=0, vmax=1, shading="flat")
+        ax.set_axis_on()
+        drum_axes(ax, X, Y)
+        ax.set_title(f"t = {t:g} s", fontsize=9)
+    fig.colorbar(pc, ax=axes, shrink=0.6, label=r"$\varphi^s$")
+    fig.suptitle(label(case).replace("_", ", "), fontsize=9)
+    _save(fig, out)
+    return times
+
+
 def figure10(case, out, times=(78.75, 80.0)):
     """|u - u_rot|, p and log10 I at two times (figure 10); on log10 I the
     creep boundary I = I_1 (solid) and the edge of the region where the
@@ -830,6 +864,7 @@ def main(argv=None):
             figure11(case, out / f"figure11_{key}.png")
             figure10(case, out / f"figure10_{key}.png")
         figure_lobes(case, out / f"lobes_{key}.png")
+        figure_revolutions(case, out / f"revolutions_{key}.png")
     numbers = _json_safe(numbers)
     # Other entries of drum.json (the tension windows of drumTension) stay
     path = out / "drum.json"
