@@ -201,3 +201,49 @@ def test_figure_revolutions_draws_the_written_revolutions(monkeypatch,
     del times["10"], times["20"]
     with pytest.raises(AssertionError, match="has not written"):
         post.figure_revolutions("drum", tmp_path / "none.png")
+
+
+def test_lobe_regions_counts_separate_small_rich_regions_of_the_body():
+    """Small-rich blocks of the body, two of them joined only through the
+    avalanche (I > I_1), and one cell too small to count: four regions,
+    the largest first, at their centroids' lab angles; three once the
+    bridge is in the body."""
+    n = 20
+    edges = np.linspace(-0.1, 0.1, n + 1)
+    X, Y = np.meshgrid(edges, edges)
+    small = np.full((n, n), 0.5)
+    small[2:8, 2:8] = 0.9            # lower left, 36 cells
+    small[2:7, 12:17] = 0.9          # lower right, 25 cells
+    small[10:14, 2:6] = 0.9          # left, 16 cells
+    small[10:14, 6:12] = 0.9         # joined to the left one ...
+    inertial = np.full((n, n), 1e-4)
+    inertial[10:14, 6] = 1.0         # ... through flowing cells only
+    small[15, 15] = 0.9              # one cell: below the area to count
+    air = np.zeros((n, n))
+    air[17:, :] = 1
+    f = {"alpha.small": small, "alpha.large": 1 - small,
+         "alpha.air": air, "I": inertial}
+    angles = post.lobe_regions(X, Y, f, level=0.7, min_area=0.02)
+    assert len(angles) == 4
+    cx = np.array([(edges[a] + edges[b]) / 2 for a, b in
+                   ((2, 8), (12, 17), (7, 12), (2, 6))])
+    cy = np.array([(edges[a] + edges[b]) / 2 for a, b in
+                   ((2, 8), (2, 7), (10, 14), (10, 14))])
+    assert angles == pytest.approx(list(np.arctan2(cy, cx)))
+    inertial[10:14, 6] = 1e-4        # the bridge in the body: joined
+    assert len(post.lobe_regions(X, Y, f, level=0.7, min_area=0.02)) == 3
+
+
+def test_readme_compares_with_the_paper_from_drum_json():
+    """The drum README's comparison with the paper is what the Krylov
+    drum.json holds, rendered by granularfoam.post.drum (--readme)."""
+    project = Path(__file__).resolve().parents[2]
+    numbers = json.loads((project / "validation" / "squareDrum" / "measured"
+                          / "Krylov" / "drum.json").read_text())
+    text = (project / "tutorials" / "squareDrum" / "README.md").read_text()
+    begin = post.PAPER_BEGIN.format("Krylov")
+    end = post.PAPER_END.format("Krylov")
+    assert begin in text and end in text, "no comparison with the paper"
+    table = text[text.index(begin) + len(begin):text.index(end)].strip()
+    assert table == post.paper_table(numbers)
+    assert post.PAPER["lobes"] in table

@@ -47,6 +47,8 @@ I1 = 0.01886                    # table 4: below it the law creeps
 ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
+LOBE_LEVEL = 0.7                # phi^s above it: small-rich (lobe_regions)
+LOBE_MIN_AREA = 0.01            # of the grains' area, for a region to count
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
 J_SERIES_STEP = 0.25            # s, J(t) kept in drum.json for figure 13
 
@@ -291,6 +293,30 @@ def lobes(case, time_name):
                           prominence=LOBE_PROMINENCE)
     peaks = peaks[(peaks >= n) & (peaks < 2 * n)] - n
     return theta[peaks[body[peaks]]]
+
+
+def lobe_regions(X, Y, f, level=LOBE_LEVEL, min_area=LOBE_MIN_AREA):
+    """Small-rich regions of the body at a time, from the fields of grid
+    (alpha.small, alpha.large, alpha.air, I): the connected sets of cells
+    (sharing a face) of the body (_body: grains below the creep boundary,
+    so that the small-rich base of the avalanche does not join them) with
+    phi^s > level, each of at least min_area of the grains' area.  Their
+    lab angles [rad] about the axis (area-weighted centroids), largest
+    first."""
+    from scipy.ndimage import label as connected
+    rich = _body(f) & (small_fraction(f) > level)
+    regions, n = connected(rich)
+    V = cell_areas(X, Y)
+    grains = np.sum(V[f["alpha.air"] < 0.5])
+    xc, yc = centres(X, Y)
+    found = []
+    for k in range(1, n + 1):
+        cells = regions == k
+        area = np.sum(V[cells])
+        if area >= min_area * grains:
+            found.append((area, math.atan2(np.sum(V[cells] * yc[cells]),
+                                           np.sum(V[cells] * xc[cells]))))
+    return [a for _, a in sorted(found, reverse=True)]
 
 
 def tension_where(case, names):
@@ -548,6 +574,11 @@ def summary(case):
         np.mean([r["depth_I_above_I1"] for r in rows]))
     out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
         case, names)
+    regions = [len(lobe_regions(*grid(case, n, ["alpha.small", "alpha.large",
+                                                 "alpha.air", "I"])))
+               for n in names]
+    out["lobe_regions_last_revolution"] = regions
+    out["lobe_regions_median"] = float(np.median(regions))
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -764,12 +795,38 @@ def figure_lobes(case, out):
 
 README_BEGIN = "<!-- drum results: {} -->"
 README_END = "<!-- end of drum results: {} -->"
+PAPER_BEGIN = "<!-- drum against the paper: {} -->"
+PAPER_END = "<!-- end of drum against the paper: {} -->"
+# What section 7 of the paper reports, for paper_table
+PAPER = {
+    "lobes": "3, towards the corners, turning with a period of about 7.5 s",
+    "J_change": "small: settled after about four revolutions (figure 13)",
+    "surface_angle": "close to ζ_s = 20.16° (§7.2)",
+    "flowing_depth": "at most about 1.6 cm (§7.2)",
+    "lowest_p": "none below zero (figure 10)",
+}
+
+
+def _runs(numbers):
+    """The run entries of drum.json's numbers, by mesh, coupling, cap."""
+    runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
+    return sorted(runs, key=lambda r: (r["N"], r["nCorrectors"],
+                                       r["etaMax"]))
+
+
+def _run_title(r):
+    """A run's column title: mesh, coupling, cap, and the advection
+    scheme when it is not the tutorial's."""
+    return (f"N = {r['N']}, "
+            f"{r.get('coupling', str(r['nCorrectors']) + ' correctors')}, "
+            f"η_max {r['etaMax']:g}"
+            + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
+               != ALPHA_SCHEME else ""))
 
 
 def results_table(numbers):
     """Markdown rows of the runs in numbers (drum.json's run entries)."""
-    runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
-    runs.sort(key=lambda r: (r["N"], r["nCorrectors"], r["etaMax"]))
+    runs = _runs(numbers)
 
     def g(x, fmt="{:.3g}"):
         return "–" if x is None else fmt.format(x)
@@ -816,12 +873,7 @@ def results_table(numbers):
         ("fractions, min / max", lambda r:
          f"{r['alpha_min']:.1e} / {r['alpha_max']:g}"),
     ]
-    head = "| | " + " | ".join(
-        f"N = {r['N']}, "
-        f"{r.get('coupling', str(r['nCorrectors']) + ' correctors')}, "
-        f"η_max {r['etaMax']:g}"
-        + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
-           != ALPHA_SCHEME else "") for r in runs) + " |"
+    head = "| | " + " | ".join(_run_title(r) for r in runs) + " |"
     lines = [head, "|---" * (len(runs) + 1) + "|"]
     for name, fn in rows:
         cells = [fn(r) for r in runs]
@@ -830,15 +882,60 @@ def results_table(numbers):
     return "\n".join(lines)
 
 
+def paper_table(numbers):
+    """Markdown rows comparing the runs of numbers (drum.json's run
+    entries) with what section 7 of the paper reports (PAPER)."""
+    runs = _runs(numbers)
+
+    def change(r):
+        J = r["J_revolution"]
+        if J.get("80") is None or J.get("40") is None:
+            return "–"
+        return f"{J['80'] / J['40'] - 1:+.0%}"
+    rows = [
+        ("small-rich lobes in the body (median over the last revolution, "
+         "`lobe_regions`)", PAPER["lobes"], lambda r: "–"
+         if r.get("lobe_regions_median") is None
+         else f"{r['lobe_regions_median']:g}"),
+        ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
+         PAPER["J_change"], change),
+        ("surface inclination, mean after 20 s", PAPER["surface_angle"],
+         lambda r: f"{r['surface_angle_mean_deg']:.1f}°"),
+        ("flowing depth on the mid-line, largest over the last revolution",
+         PAPER["flowing_depth"], lambda r: "–"
+         if "flowing_depth_last_revolution_m" not in r else
+         f"{r['flowing_depth_last_revolution_m'][1] * 100:.1f} cm"),
+        ("lowest grain pressure over the steps of the last revolution",
+         PAPER["lowest_p"], lambda r: "–"
+         if "lowest_p_grains_steps_last_revolution" not in r else
+         f"{r['lowest_p_grains_steps_last_revolution']:.0f} Pa"),
+    ]
+    head = "| | paper (N = 200) | " + " | ".join(
+        _run_title(r) for r in runs) + " |"
+    lines = [head, "|---" * (len(runs) + 2) + "|"]
+    for name, paper, fn in rows:
+        lines.append(f"| {name} | {paper} | "
+                     + " | ".join(fn(r) for r in runs) + " |")
+    return "\n".join(lines)
+
+
+def _replace_between(text, begin, end, body):
+    i, j = text.find(begin), text.find(end)
+    assert 0 <= i < j, f"no markers {begin} ... {end}"
+    return text[:i + len(begin)] + "\n\n" + body + "\n\n" + text[j:]
+
+
 def write_readme(path, numbers, name):
     """Replace the table between the markers of the drum README named
-    name (the results folder's name: measured, etaMax, ...)."""
-    text = path.read_text()
-    begin, end = README_BEGIN.format(name), README_END.format(name)
-    i, j = text.find(begin), text.find(end)
-    assert 0 <= i < j, f"no drum results markers {begin} in {path}"
-    path.write_text(text[:i + len(begin)] + "\n\n"
-                    + results_table(numbers) + "\n\n" + text[j:])
+    name (the results folder's name: measured, etaMax, ...), and the
+    comparison with the paper between its own markers where the README
+    has them."""
+    text = _replace_between(path.read_text(), README_BEGIN.format(name),
+                            README_END.format(name), results_table(numbers))
+    if PAPER_BEGIN.format(name) in text:
+        text = _replace_between(text, PAPER_BEGIN.format(name),
+                                PAPER_END.format(name), paper_table(numbers))
+    path.write_text(text)
 
 
 def main(argv=None):
