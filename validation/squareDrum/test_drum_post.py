@@ -203,35 +203,48 @@ def test_figure_revolutions_draws_the_written_revolutions(monkeypatch,
         post.figure_revolutions("drum", tmp_path / "none.png")
 
 
-def test_lobe_regions_counts_separate_small_rich_regions_of_the_body():
-    """Small-rich blocks of the body, two of them joined only through the
-    avalanche (I > I_1), and one cell too small to count: four regions,
-    the largest first, at their centroids' lab angles; three once the
-    bridge is in the body."""
-    n = 20
+def test_lobe_maxima_are_the_prominent_maxima_of_the_body():
+    """Three bumps of phi^s on 0.45: two of height 0.3 and 0.2 on a ridge
+    of 0.1 that joins them (they stand 0.4 above the lowest value and 0.2
+    above the ridge) and one of 0.1 whose top is in the avalanche
+    (I > I_1), so that its body part stands only 0.03 above the rest: the
+    first two are lobes, at the lab angles of their tops; a bump of one
+    cell is not."""
+    n = 40
     edges = np.linspace(-0.1, 0.1, n + 1)
     X, Y = np.meshgrid(edges, edges)
-    small = np.full((n, n), 0.5)
-    small[2:8, 2:8] = 0.9            # lower left, 36 cells
-    small[2:7, 12:17] = 0.9          # lower right, 25 cells
-    small[10:14, 2:6] = 0.9          # left, 16 cells
-    small[10:14, 6:12] = 0.9         # joined to the left one ...
+    xc, yc = post.centres(X, Y)
+
+    def bump(x, y, h, w=0.015):
+        return h * np.exp(-((xc - x) ** 2 + (yc - y) ** 2) / w ** 2)
+    ridge = (np.abs(yc + 0.05) < 0.01) & (np.abs(xc) < 0.06)
+    small = (0.45 + 0.1 * ridge + bump(-0.05, -0.05, 0.3)
+             + bump(0.05, -0.05, 0.2) + bump(-0.05, 0.04, 0.1))
+    small = np.minimum(small, 0.95)
     inertial = np.full((n, n), 1e-4)
-    inertial[10:14, 6] = 1.0         # ... through flowing cells only
-    small[15, 15] = 0.9              # one cell: below the area to count
+    inertial[np.hypot(xc + 0.05, yc - 0.04) < 0.016] = 1.0
+    small[5, 30] = 0.9                  # one cell
     air = np.zeros((n, n))
-    air[17:, :] = 1
+    air[36:, :] = 1
     f = {"alpha.small": small, "alpha.large": 1 - small,
          "alpha.air": air, "I": inertial}
-    angles = post.lobe_regions(X, Y, f, level=0.7, min_area=0.02)
-    assert len(angles) == 4
-    cx = np.array([(edges[a] + edges[b]) / 2 for a, b in
-                   ((2, 8), (12, 17), (7, 12), (2, 6))])
-    cy = np.array([(edges[a] + edges[b]) / 2 for a, b in
-                   ((2, 8), (2, 7), (10, 14), (10, 14))])
-    assert angles == pytest.approx(list(np.arctan2(cy, cx)))
-    inertial[10:14, 6] = 1e-4        # the bridge in the body: joined
-    assert len(post.lobe_regions(X, Y, f, level=0.7, min_area=0.02)) == 3
+    lobes = post.lobe_maxima(X, Y, f, prominence=0.05, min_area=0.01)
+    angles = [a for a, _, _ in lobes]
+    assert len(lobes) == 2, lobes
+    assert angles == pytest.approx([math.atan2(-0.05, -0.05),
+                                    math.atan2(-0.05, 0.05)], abs=0.05)
+    assert [h for _, h, _ in lobes] == pytest.approx([0.4, 0.2], abs=0.02)
+    inertial[:] = 1e-4                  # the third bump all in the body
+    assert len(post.lobe_maxima(X, Y, f, prominence=0.05,
+                                min_area=0.01)) == 3
+
+
+def test_lobe_spacing_leaves_out_the_gap_across_the_air():
+    """Lobes at -150, -60 and 30 degrees: 90 degrees apart, the gap of 180
+    across the top left out; one lobe has no spacing."""
+    a = np.radians([30.0, -150.0, -60.0])
+    assert math.degrees(post.lobe_spacing(a)) == pytest.approx(90.0)
+    assert post.lobe_spacing(a[:1]) is None
 
 
 def test_readme_compares_with_the_paper_from_drum_json():

@@ -47,8 +47,8 @@ I1 = 0.01886                    # table 4: below it the law creeps
 ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
-LOBE_LEVEL = 0.7                # phi^s above it: small-rich (lobe_regions)
-LOBE_MIN_AREA = 0.01            # of the grains' area, for a region to count
+LOBE_MAXIMUM_PROMINENCE = 0.05  # of phi^s, for a maximum to be a lobe
+LOBE_MIN_AREA = 0.01            # of the grains' area, for a lobe to count
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
 J_SERIES_STEP = 0.25            # s, J(t) kept in drum.json for figure 13
 
@@ -295,28 +295,77 @@ def lobes(case, time_name):
     return theta[peaks[body[peaks]]]
 
 
-def lobe_regions(X, Y, f, level=LOBE_LEVEL, min_area=LOBE_MIN_AREA):
-    """Small-rich regions of the body at a time, from the fields of grid
-    (alpha.small, alpha.large, alpha.air, I): the connected sets of cells
-    (sharing a face) of the body (_body: grains below the creep boundary,
-    so that the small-rich base of the avalanche does not join them) with
-    phi^s > level, each of at least min_area of the grains' area.  Their
-    lab angles [rad] about the axis (area-weighted centroids), largest
-    first."""
-    from scipy.ndimage import label as connected
-    rich = _body(f) & (small_fraction(f) > level)
-    regions, n = connected(rich)
-    V = cell_areas(X, Y)
-    grains = np.sum(V[f["alpha.air"] < 0.5])
-    xc, yc = centres(X, Y)
+def lobe_maxima(X, Y, f, prominence=LOBE_MAXIMUM_PROMINENCE,
+                min_area=LOBE_MIN_AREA):
+    """Small-rich lobes of the body at a time, from the fields of grid
+    (alpha.small, alpha.large, alpha.air, I): the maxima of phi^s over the
+    body (_body: grains below the creep boundary, so that the small-rich
+    base of the avalanche does not join them) that stand at least
+    `prominence` above the saddle where they join a higher one (cells
+    joined through their faces), with at least min_area of the grains'
+    area above that saddle; the highest stands above the body's lowest
+    value.  This is the prominence of the ring's peaks (lobes) on the
+    whole section.  Returns [(lab angle [rad] of the maximum's cell about
+    the axis, prominence, area fraction)], the most prominent first."""
+    phis = np.where(_body(f), small_fraction(f), np.nan).ravel()
+    V = cell_areas(X, Y).ravel()
+    grains = np.sum(V[(f["alpha.air"] < 0.5).ravel()])
+    xc, yc = (c.ravel() for c in centres(X, Y))
+    least = min_area * grains
+    cols = f["alpha.air"].shape[1]
+    cells = np.flatnonzero(np.isfinite(phis))
+    parent = np.full(phis.size, -1)     # -1: not yet above the level
+    top = np.arange(phis.size)          # a component's highest cell
+    area = V.copy()
+
+    def root(c):
+        while parent[c] != c:
+            parent[c] = parent[parent[c]]
+            c = parent[c]
+        return c
+
     found = []
-    for k in range(1, n + 1):
-        cells = regions == k
-        area = np.sum(V[cells])
-        if area >= min_area * grains:
-            found.append((area, math.atan2(np.sum(V[cells] * yc[cells]),
-                                           np.sum(V[cells] * xc[cells]))))
-    return [a for _, a in sorted(found, reverse=True)]
+    order = cells[np.argsort(-phis[cells], kind="stable")]
+    for c in order:                     # lower the level cell by cell
+        parent[c] = c
+        i, j = divmod(c, cols)
+        for nb in (c - cols if i > 0 else -1, c + cols,
+                   c - 1 if j > 0 else -1, c + 1 if j + 1 < cols else -1):
+            if not 0 <= nb < phis.size or parent[nb] < 0:
+                continue
+            a, b = root(c), root(nb)
+            if a == b:
+                continue
+            # b ends here: the lower maximum of two lobe-sized regions, or
+            # the smaller region (a speck joins its neighbour unrecorded)
+            if min(area[a], area[b]) >= least:
+                lower = phis[top[a]] < phis[top[b]]
+            else:
+                lower = area[a] < area[b]
+            if lower:
+                a, b = b, a
+            if area[b] >= least:
+                found.append((top[b], phis[top[b]] - phis[c], area[b]))
+            parent[b] = a
+            area[a] += area[b]
+    for r in {root(c) for c in cells}:
+        if area[r] >= least:
+            found.append((top[r], phis[top[r]] - phis[order[-1]], area[r]))
+    lobes = [(math.atan2(yc[c], xc[c]), float(h), float(a / grains))
+             for c, h, a in found if h >= prominence]
+    return sorted(lobes, key=lambda x: -x[1])
+
+
+def lobe_spacing(angles):
+    """The median angle [rad] between neighbouring lobes (angles about the
+    axis), leaving out the largest gap, the one across the air and the
+    avalanche; None with fewer than two lobes.  n lobes spread around the
+    drum are 2 pi/n apart."""
+    if len(angles) < 2:
+        return None
+    a = np.sort(np.mod(angles, 2 * math.pi))
+    gaps = np.diff(np.append(a, a[0] + 2 * math.pi))
+    return float(np.median(np.delete(gaps, np.argmax(gaps))))
 
 
 def tension_where(case, names):
@@ -574,11 +623,15 @@ def summary(case):
         np.mean([r["depth_I_above_I1"] for r in rows]))
     out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
         case, names)
-    regions = [len(lobe_regions(*grid(case, n, ["alpha.small", "alpha.large",
-                                                 "alpha.air", "I"])))
-               for n in names]
-    out["lobe_regions_last_revolution"] = regions
-    out["lobe_regions_median"] = float(np.median(regions))
+    maxima = [[x[0] for x in lobe_maxima(*grid(
+        case, n, ["alpha.small", "alpha.large", "alpha.air", "I"]))]
+        for n in names]
+    out["lobe_maxima_last_revolution"] = [len(m) for m in maxima]
+    out["lobe_maxima_median"] = float(np.median([len(m) for m in maxima]))
+    spacing = [lobe_spacing(m) for m in maxima]
+    spacing = [x for x in spacing if x is not None]
+    out["lobe_spacing_deg_median"] = (float(np.degrees(np.median(spacing)))
+                                      if spacing else None)
     counts = [len(lobes(case, n)) for n in names]
     out["lobes_last_revolution"] = counts
     out["lobes_median"] = float(np.median(counts))
@@ -799,7 +852,8 @@ PAPER_BEGIN = "<!-- drum against the paper: {} -->"
 PAPER_END = "<!-- end of drum against the paper: {} -->"
 # What section 7 of the paper reports, for paper_table
 PAPER = {
-    "lobes": "3, towards the corners, turning with a period of about 7.5 s",
+    "lobes": "3 in all, towards the corners (120° apart), turning with a "
+             "period of about 7.5 s",
     "J_change": "small: settled after about four revolutions (figure 13)",
     "surface_angle": "close to ζ_s = 20.16° (§7.2)",
     "flowing_depth": "at most about 1.6 cm (§7.2)",
@@ -853,6 +907,8 @@ def results_table(numbers):
          if not r.get("quarter_turn_change_last_revolution") else
          "{lab:.3f} / {drum:.3f} ({variation:.3f})".format(
              **r["quarter_turn_change_last_revolution"])),
+        ("small-rich lobes in the body (`lobe_maxima`), median over the "
+         "last revolution; the angle between neighbours", _lobes_cell),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
         ("lowest p in the grains, written times of the last revolution [Pa]",
@@ -882,6 +938,15 @@ def results_table(numbers):
     return "\n".join(lines)
 
 
+def _lobes_cell(r):
+    """Lobe count and spacing of a run entry, for the tables."""
+    if r.get("lobe_maxima_median") is None:
+        return "–"
+    spacing = r.get("lobe_spacing_deg_median")
+    return (f"{r['lobe_maxima_median']:g}" if spacing is None else
+            f"{r['lobe_maxima_median']:g}, {spacing:.0f}° apart")
+
+
 def paper_table(numbers):
     """Markdown rows comparing the runs of numbers (drum.json's run
     entries) with what section 7 of the paper reports (PAPER)."""
@@ -893,10 +958,9 @@ def paper_table(numbers):
             return "–"
         return f"{J['80'] / J['40'] - 1:+.0%}"
     rows = [
-        ("small-rich lobes in the body (median over the last revolution, "
-         "`lobe_regions`)", PAPER["lobes"], lambda r: "–"
-         if r.get("lobe_regions_median") is None
-         else f"{r['lobe_regions_median']:g}"),
+        ("small-rich lobes in the body (`lobe_maxima`), median over the "
+         "last revolution; the angle between neighbours", PAPER["lobes"],
+         _lobes_cell),
         ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
          PAPER["J_change"], change),
         ("surface inclination, mean after 20 s", PAPER["surface_angle"],
