@@ -260,3 +260,16 @@ def test_readme_compares_with_the_paper_from_drum_json():
     table = text[text.index(begin) + len(begin):text.index(end)].strip()
     assert table == post.paper_table(numbers)
     assert post.PAPER["lobes"] in table
+
+
+def test_sidewall_reads_the_end_walls_of_fvOptions(tmp_path):
+    """The gap and friction of the tutorial's fvOptions.sidewall once
+    ./Allrun -sidewall has copied it; None without constant/fvOptions."""
+    project = Path(__file__).resolve().parents[2]
+    (tmp_path / "constant").mkdir()
+    assert post.sidewall(tmp_path) is None
+    text = (project / "tutorials" / "squareDrum" / "constant"
+            / "fvOptions.sidewall").read_text()
+    (tmp_path / "constant" / "fvOptions").write_text(
+        text.replace("0.25;", "0.3;"))
+    assert post.sidewall(tmp_path) == {"W": 0.01, "muW": 0.3}

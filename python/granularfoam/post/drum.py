@@ -106,14 +106,34 @@ def alpha_scheme(case):
     return m.group(1).strip()
 
 
+def sidewall(case):
+    """The end walls' friction of case/constant/fvOptions (./Allrun
+    -sidewall W MUW): {'W': gap [m], 'muW': coefficient}, or None without
+    a granularSidewallFriction there."""
+    path = Path(case) / "constant" / "fvOptions"
+    if not path.is_file():
+        return None
+    text = re.sub(r"//.*", "", read_text(path))
+    if not re.search(r"\btype\s+granularSidewallFriction\s*;", text):
+        return None
+    values = {k: re.findall(rf"\b{k}\s+([-+.\deE]+)\s*;", text)
+              for k in ("W", "muW")}
+    assert all(values.values()), f"{path}: no W or muW"
+    return {k: float(v[-1]) for k, v in values.items()}
+
+
 def label(case):
     """The key of a run in drum.json and its figures: N, correctors and
-    etaMax, and the advection scheme when it is not the tutorial's."""
+    etaMax, the advection scheme when it is not the tutorial's, and the
+    end walls' gap and friction where the case has them."""
     par = parameters(case)
     key = (f"N{int(par['N'])}_{coupling(case).replace(' ', '')}"
            f"_etaMax{par['etaMax']:g}")
     if alpha_scheme(case) != ALPHA_SCHEME:
         key += "_" + re.sub(r"\W+", "", alpha_scheme(case))
+    walls = sidewall(case)
+    if walls:
+        key += f"_walls{walls['W']:g}m_muW{walls['muW']:g}"
     return key
 
 
@@ -570,6 +590,7 @@ def summary(case):
     out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
            "coupling": coupling(case),
            "etaMax": par["etaMax"], "alphaScheme": alpha_scheme(case),
+           "sidewall": sidewall(case),
            "endTime": float(m["t"][-1])}
     out.update(run_cost(case))
     out["J_revolution"] = {
@@ -865,7 +886,7 @@ def _runs(numbers):
     """The run entries of drum.json's numbers, by mesh, coupling, cap."""
     runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
     return sorted(runs, key=lambda r: (r["N"], r["nCorrectors"],
-                                       r["etaMax"]))
+                                       r["etaMax"], bool(r.get("sidewall"))))
 
 
 def _run_title(r):
@@ -875,7 +896,9 @@ def _run_title(r):
             f"{r.get('coupling', str(r['nCorrectors']) + ' correctors')}, "
             f"η_max {r['etaMax']:g}"
             + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
-               != ALPHA_SCHEME else ""))
+               != ALPHA_SCHEME else "")
+            + (", end walls {W:g} m apart, μ_w {muW:g}".format(
+                **r["sidewall"]) if r.get("sidewall") else ""))
 
 
 def results_table(numbers):
