@@ -273,3 +273,17 @@ def test_sidewall_reads_the_end_walls_of_fvOptions(tmp_path):
     (tmp_path / "constant" / "fvOptions").write_text(
         text.replace("0.25;", "0.3;"))
     assert post.sidewall(tmp_path) == {"W": 0.01, "muW": 0.3}
+
+
+def test_readme_sidewall_table_is_rendered_from_sidewall_json():
+    """The drum README's sidewall table is what sidewall.json holds,
+    rendered by granularfoam.post.drumSidewall (--readme)."""
+    from granularfoam.post import drumSidewall
+    project = Path(__file__).resolve().parents[2]
+    numbers = json.loads((project / "validation" / "squareDrum" / "measured"
+                          / "sidewall.json").read_text())
+    text = (project / "tutorials" / "squareDrum" / "README.md").read_text()
+    begin, end = drumSidewall.README_BEGIN, drumSidewall.README_END
+    assert begin in text and end in text, "no sidewall table in the README"
+    table = text[text.index(begin) + len(begin):text.index(end)].strip()
+    assert table == drumSidewall.table(numbers)

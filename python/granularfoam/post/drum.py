@@ -1006,7 +1006,8 @@ def paper_table(numbers):
     return "\n".join(lines)
 
 
-def _replace_between(text, begin, end, body):
+def replace_between(text, begin, end, body):
+    """text with body between the markers begin and end."""
     i, j = text.find(begin), text.find(end)
     assert 0 <= i < j, f"no markers {begin} ... {end}"
     return text[:i + len(begin)] + "\n\n" + body + "\n\n" + text[j:]
@@ -1017,10 +1018,10 @@ def write_readme(path, numbers, name):
     name (the results folder's name: measured, etaMax, ...), and the
     comparison with the paper between its own markers where the README
     has them."""
-    text = _replace_between(path.read_text(), README_BEGIN.format(name),
+    text = replace_between(path.read_text(), README_BEGIN.format(name),
                             README_END.format(name), results_table(numbers))
     if PAPER_BEGIN.format(name) in text:
-        text = _replace_between(text, PAPER_BEGIN.format(name),
+        text = replace_between(text, PAPER_BEGIN.format(name),
                                 PAPER_END.format(name), paper_table(numbers))
     path.write_text(text)
 

@@ -20,10 +20,11 @@ At every written time from --from on (the steady avalanche regime):
 - the surface inclination and the peak relative speed (the monitor).
 
     /usr/bin/python3 -m granularfoam.post.drumSidewall NOWALL WALL \\
-        [--from 10] [--out DIR]
+        [--from 10] [--out DIR] [--readme README]
 
 writes sidewall.json (means over the times, and every time) and
-sidewall.png.
+sidewall.png; with --readme README it renders the table into that README
+between its markers (<!-- drum sidewall results --> ...).
 """
 import argparse
 import json
@@ -41,7 +42,7 @@ from scipy.ndimage import label  # noqa: E402
 from ..foamio import time_names  # noqa: E402
 from .drum import (I1, drum_axes, _save, centres,  # noqa: E402
                    grid, monitor, parameters, relative_speed,
-                   small_fraction)
+                   replace_between, sidewall, small_fraction)
 
 FRACTION = 0.25         # of the line's largest relative speed: the base
                         # of the flowing layer (the body creeps at 10-15 %
@@ -197,12 +198,73 @@ def figure(results, out):
     _save(fig, out)
 
 
+README_BEGIN = "<!-- drum sidewall results -->"
+README_END = "<!-- end of drum sidewall results -->"
+
+
+def table(numbers):
+    """Markdown rows of sidewall.json's two runs (means over the written
+    times, ranges in brackets)."""
+    runs = [numbers["no walls"], numbers["sidewall friction"]]
+
+    def walls(r):
+        w = r.get("sidewall")
+        return ("no walls" if not w else
+                f"W = {w['W'] * 100:g} cm, μ_w = {w['muW']:g}")
+
+    def mean_range(key, scale, unit, fmt="{:.2f}"):
+        def cell(r):
+            text = fmt.format(r[key] * scale) + unit
+            if f"{key}_range" in r:
+                lo, hi = r[f"{key}_range"]
+                text += (f" ({fmt.format(lo * scale)}–"
+                         f"{fmt.format(hi * scale)})")
+            return text
+        return cell
+    rows = [
+        ("surface inclination (monitor)", lambda r:
+         f"{r['monitor_surface_angle_mean_deg']:.1f}°"),
+        ("peak speed relative to the drum (monitor)", lambda r:
+         f"{r['monitor_peak_speed_mean']:.3f} m/s"),
+        ("flowing depth on the mid-line, "
+         f"{FRACTION:g} of the peak speed",
+         mean_range("flowing_depth", 100, " cm")),
+        ("depth with I > I_1 on the mid-line",
+         mean_range("depth_I_above_I1", 100, " cm")),
+        (f"creep speed of the body {CREEP_DEPTH * 100:g} cm below the "
+         "surface", lambda r: f"{r['creep_speed']:.2g} m/s"),
+        (f"small-rich area, φ^s > {RICH[0]:g}",
+         mean_range(f"small_rich_area_{RICH[0]:g}", 1e4, " cm²", "{:.0f}")),
+        (f"small-rich area, φ^s > {RICH[1]:g}",
+         mean_range(f"small_rich_area_{RICH[1]:g}", 1e4, " cm²", "{:.0f}")),
+        ("central core", mean_range("central_core_area", 1e4, " cm²",
+                                    "{:.1f}")),
+        ("grain area", mean_range("grain_area", 1e4, " cm²", "{:.0f}")),
+    ]
+    first = runs[0]
+    lines = [f"| mean over {first['from']:g}–{first['to']:g} s (range) | "
+             + " | ".join(walls(r) for r in runs) + " |",
+             "|---|---|---|"]
+    for name, fn in rows:
+        lines.append(f"| {name} | " + " | ".join(fn(r) for r in runs) + " |")
+    return "\n".join(lines)
+
+
+def write_readme(path, numbers):
+    """Replace the table between the drum README's sidewall markers."""
+    path.write_text(replace_between(path.read_text(), README_BEGIN,
+                                    README_END, table(numbers)))
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("nowall", type=Path)
     parser.add_argument("wall", type=Path)
     parser.add_argument("--from", dest="t_from", type=float, default=10.0)
     parser.add_argument("--out", type=Path, default=None)
+    parser.add_argument("--readme", type=Path, default=None,
+                        help="render sidewall.json into this README, "
+                             "between its drum sidewall results markers")
     args = parser.parse_args(argv)
     out = args.out or args.wall / "figures"
     results, numbers = {}, {}
@@ -213,6 +275,7 @@ def main(argv=None):
         fv = case / "constant" / "fvOptions"
         s["case"] = str(case)
         s["fvOptions"] = fv.is_file()
+        s["sidewall"] = sidewall(case)
         results[label] = (rows, profile, maps, s)
         numbers[label] = dict(s, every_time=rows)
     assert not numbers["no walls"]["fvOptions"], "NOWALL has an fvOptions"
@@ -220,6 +283,8 @@ def main(argv=None):
     figure(results, out / "sidewall.png")
     out.mkdir(parents=True, exist_ok=True)
     (out / "sidewall.json").write_text(json.dumps(numbers, indent=2))
+    if args.readme:
+        write_readme(args.readme, numbers)
     print(json.dumps({k: {kk: vv for kk, vv in v.items()
                           if kk != "every_time"}
                       for k, v in numbers.items()}, indent=2))
