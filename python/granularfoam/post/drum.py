@@ -886,7 +886,8 @@ def _runs(numbers):
     """The run entries of drum.json's numbers, by mesh, coupling, cap."""
     runs = [v for v in numbers.values() if isinstance(v, dict) and "N" in v]
     return sorted(runs, key=lambda r: (r["N"], r["nCorrectors"],
-                                       r["etaMax"], bool(r.get("sidewall"))))
+                                       r["etaMax"], bool(r.get("sidewall")),
+                                       r.get("coupling", "")))
 
 
 def _run_title(r):
