@@ -287,3 +287,19 @@ def test_readme_sidewall_table_is_rendered_from_sidewall_json():
     assert begin in text and end in text, "no sidewall table in the README"
     table = text[text.index(begin) + len(begin):text.index(end)].strip()
     assert table == drumSidewall.table(numbers)
+
+
+def test_flat_surface_holds_the_area_below_it():
+    """Level walls and a level surface: d = A/(2L) - L; half the square
+    below a surface through the axis at any turn and inclination; the
+    drum turned by 45 degrees, a level surface cutting off the lower
+    corner's triangle of area a = h^2: d = -sqrt(2) L + sqrt(a)."""
+    L = 0.1
+    assert post.flat_surface(0.0, 0.0, 0.7 * 4 * L * L, L) == \
+        pytest.approx(0.04)
+    for theta, angle in ((0.3, 20.0), (-1.0, 35.0), (2.0, 5.0)):
+        assert post.flat_surface(theta, angle, 2 * L * L, L) == \
+            pytest.approx(0.0, abs=1e-8)
+    a = 0.005                       # a triangle at the lower corner
+    assert post.flat_surface(math.pi / 4, 0.0, a, L) == \
+        pytest.approx(-math.sqrt(2) * L + math.sqrt(a))

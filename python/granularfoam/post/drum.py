@@ -522,6 +522,58 @@ def quarter_turn_changes(case, names):
             "pairs": len(rows)}
 
 
+def flat_surface(theta, angle_deg, area, L):
+    """The distance from the axis, along the upward normal (sin a, cos a)
+    of a flat surface at inclination a = angle_deg (falling towards +x,
+    as the drum monitor measures it), at which the square drum of half
+    width L turned by theta [rad] holds `area` [m^2] below the surface:
+    where the surface would stand if the grains only followed the walls
+    (section 7.2: it rises and falls each quarter turn)."""
+    from scipy.optimize import brentq
+    c, s_ = math.cos(theta), math.sin(theta)
+    square = L * np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], float)
+    square = square @ np.array([[c, s_], [-s_, c]])
+    a = math.radians(angle_deg)
+    n = np.array([math.sin(a), math.cos(a)])
+
+    def below(d):
+        """Area of the square where n.x < d (the polygon clipped by the
+        half plane, Sutherland-Hodgman), by the shoelace formula."""
+        h = square @ n - d
+        poly = []
+        for k in range(4):
+            p, q, hp, hq = square[k], square[(k + 1) % 4], h[k], h[(k + 1) % 4]
+            if hp <= 0:
+                poly.append(p)
+            if hp * hq < 0:
+                poly.append(p + hp / (hp - hq) * (q - p))
+        if len(poly) < 3:
+            return 0.0
+        x, y = np.array(poly).T
+        return 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    return brentq(lambda d: below(d) - area, -1.5 * L, 1.5 * L, xtol=1e-9)
+
+
+def surface_rise(case, rows, names):
+    """The free surface's distance from the axis on the mid-line (rows of
+    drumSidewall.measure at the written times names) against a flat
+    surface at the same inclination holding the grains' area
+    (flat_surface): {'t', 'measured_m', 'flat_m'} and the range of each
+    over the times and their correlation."""
+    L = parameters(case)["L"]
+    X, Y, f = grid(case, names[0], ["alpha.air"])
+    area = float(np.sum((1 - f["alpha.air"]) * cell_areas(X, Y)))
+    omega = -2 * math.pi / PERIOD
+    t = [r["t"] for r in rows]
+    measured = [r["surface_distance_from_axis"] for r in rows]
+    flat = [flat_surface(omega * r["t"], r["surface_angle_deg"], area, L)
+            for r in rows]
+    return {"t": t, "measured_m": measured, "flat_m": flat,
+            "measured_range_m": float(np.ptp(measured)),
+            "flat_range_m": float(np.ptp(flat)),
+            "correlation": float(np.corrcoef(measured, flat)[0, 1])}
+
+
 def cell_areas(X, Y):
     """Areas (N, N) of the moved block's cells from their corners (grid),
     by the shoelace formula."""
@@ -642,6 +694,7 @@ def summary(case):
                                               float(np.max(depths))]
     out["depth_I_above_I1_last_revolution_m"] = float(
         np.mean([r["depth_I_above_I1"] for r in rows]))
+    out["surface_rise_last_revolution"] = surface_rise(case, rows, names)
     out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
         case, names)
     maxima = [[x[0] for x in lobe_maxima(*grid(
@@ -926,6 +979,14 @@ def results_table(numbers):
          if "flowing_depth_last_revolution_m" not in r else
          f"{r['flowing_depth_last_revolution_m'][0] * 100:.2f} / "
          f"{r['flowing_depth_last_revolution_m'][1] * 100:.2f}"),
+        ("rise and fall of the free surface on the mid-line, last "
+         "revolution: its range / a flat surface's holding the grains' "
+         "area (correlation) [mm]", lambda r: "–"
+         if not r.get("surface_rise_last_revolution") else
+         "{:.1f} / {:.1f} ({:.3f})".format(
+             r["surface_rise_last_revolution"]["measured_range_m"] * 1e3,
+             r["surface_rise_last_revolution"]["flat_range_m"] * 1e3,
+             r["surface_rise_last_revolution"]["correlation"])),
         ("mean change of φ^s over a quarter turn, last revolution, in the "
          "lab / in the drum (its mean deviation)", lambda r: "–"
          if not r.get("quarter_turn_change_last_revolution") else
