@@ -203,40 +203,33 @@ def test_figure_revolutions_draws_the_written_revolutions(monkeypatch,
         post.figure_revolutions("drum", tmp_path / "none.png")
 
 
-def test_lobe_maxima_are_the_prominent_maxima_of_the_body():
-    """Three bumps of phi^s on 0.45: two of height 0.3 and 0.2 on a ridge
-    of 0.1 that joins them (they stand 0.4 above the lowest value and 0.2
-    above the ridge) and one of 0.1 whose top is in the avalanche
-    (I > I_1), so that its body part stands only 0.03 above the rest: the
-    first two are lobes, at the lab angles of their tops; a bump of one
-    cell is not."""
-    n = 40
+def test_lobe_angles_are_the_radial_arms_of_the_body():
+    """Small-rich arms from a mixed core towards three corners of the
+    drum and along a wall, joined at the core: the arms in the body are
+    lobes at their angles; the arm whose outer part is in the avalanche
+    (I > I_1) is not; an arm of one cell's width and 0.04 contrast is
+    not."""
+    n = 60
     edges = np.linspace(-0.1, 0.1, n + 1)
     X, Y = np.meshgrid(edges, edges)
     xc, yc = post.centres(X, Y)
+    r, theta = np.hypot(xc, yc), np.arctan2(yc, xc)
 
-    def bump(x, y, h, w=0.015):
-        return h * np.exp(-((xc - x) ** 2 + (yc - y) ** 2) / w ** 2)
-    ridge = (np.abs(yc + 0.05) < 0.01) & (np.abs(xc) < 0.06)
-    small = (0.45 + 0.1 * ridge + bump(-0.05, -0.05, 0.3)
-             + bump(0.05, -0.05, 0.2) + bump(-0.05, 0.04, 0.1))
-    small = np.minimum(small, 0.95)
+    def arm(angle, height, width=0.35):
+        d = np.angle(np.exp(1j * (theta - math.radians(angle))))
+        return height * np.exp(-(d / width) ** 2) * (r > 0.02)
+    small = (0.45 + arm(-135, 0.3) + arm(-45, 0.3) + arm(135, 0.3)
+             + arm(45, 0.3) + arm(180, 0.04, width=0.02))
     inertial = np.full((n, n), 1e-4)
-    inertial[np.hypot(xc + 0.05, yc - 0.04) < 0.016] = 1.0
-    small[5, 30] = 0.9                  # one cell
+    inertial[(r > 0.03) & (np.abs(theta - math.pi / 4) < 0.6)] = 1.0
     air = np.zeros((n, n))
-    air[36:, :] = 1
     f = {"alpha.small": small, "alpha.large": 1 - small,
          "alpha.air": air, "I": inertial}
-    lobes = post.lobe_maxima(X, Y, f, prominence=0.05, min_area=0.01)
-    angles = [a for a, _, _ in lobes]
-    assert len(lobes) == 2, lobes
-    assert angles == pytest.approx([math.atan2(-0.05, -0.05),
-                                    math.atan2(-0.05, 0.05)], abs=0.05)
-    assert [h for _, h, _ in lobes] == pytest.approx([0.4, 0.2], abs=0.02)
-    inertial[:] = 1e-4                  # the third bump all in the body
-    assert len(post.lobe_maxima(X, Y, f, prominence=0.05,
-                                min_area=0.01)) == 3
+    angles = np.degrees(post.lobe_angles(X, Y, f))
+    assert sorted(np.mod(angles, 360)) == pytest.approx([135, 225, 315],
+                                                        abs=5)
+    assert math.degrees(post.lobe_spacing(np.radians(angles))) == \
+        pytest.approx(90, abs=5)
 
 
 def test_lobe_spacing_leaves_out_the_gap_across_the_air():

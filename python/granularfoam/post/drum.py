@@ -47,8 +47,9 @@ I1 = 0.01886                    # table 4: below it the law creeps
 ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
 LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
-LOBE_MAXIMUM_PROMINENCE = 0.05  # of phi^s, for a maximum to be a lobe
-LOBE_MIN_AREA = 0.01            # of the grains' area, for a lobe to count
+LOBE_ANNULUS = (0.4, 0.9)       # radii / L of lobe_profile's annulus
+LOBE_BINS = 72                  # its sectors, 5 degrees each
+LOBE_PROMINENCE_ANNULUS = 0.05  # of its mean phi^s, for a lobe to count
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
 J_SERIES_STEP = 0.25            # s, J(t) kept in drum.json for figure 13
 
@@ -298,82 +299,57 @@ def _has_time(case, t):
     return True
 
 
+def _circular_peaks(g, valid, prominence):
+    """Indices of the peaks of g around a closed circle of prominence at
+    least `prominence`, among the valid points; the others are set to the
+    valid points' largest value, so that no peak is made by a gap's
+    edge."""
+    if not valid.any():
+        return np.array([], dtype=int)
+    g = np.where(valid, g, g[valid].max())
+    n = g.size
+    peaks, _ = find_peaks(np.concatenate((g, g, g)), prominence=prominence)
+    peaks = peaks[(peaks >= n) & (peaks < 2 * n)] - n
+    return peaks[valid[peaks]]
+
+
 def lobes(case, time_name):
     """Small-rich lobes crossing the LOBE_RING circle at a time: their lab
     angles [rad].  A lobe is a peak of phi^s of prominence LOBE_PROMINENCE
-    within the body (_body); points outside it are set to the body's
-    largest value, so that no peak is made by a gap's edge."""
+    within the body (_body)."""
     theta, f = ring(case, time_name)
-    body = _body(f)
-    if not body.any():
-        return np.array([])
-    g = np.where(body, f["alpha.small"], f["alpha.small"][body].max())
-    n = g.size
-    peaks, _ = find_peaks(np.concatenate((g, g, g)),
-                          prominence=LOBE_PROMINENCE)
-    peaks = peaks[(peaks >= n) & (peaks < 2 * n)] - n
-    return theta[peaks[body[peaks]]]
+    return theta[_circular_peaks(f["alpha.small"], _body(f),
+                                 LOBE_PROMINENCE)]
 
 
-def lobe_maxima(X, Y, f, prominence=LOBE_MAXIMUM_PROMINENCE,
-                min_area=LOBE_MIN_AREA):
-    """Small-rich lobes of the body at a time, from the fields of grid
-    (alpha.small, alpha.large, alpha.air, I): the maxima of phi^s over the
-    body (_body: grains below the creep boundary, so that the small-rich
-    base of the avalanche does not join them) that stand at least
-    `prominence` above the saddle where they join a higher one (cells
-    joined through their faces), with at least min_area of the grains'
-    area above that saddle; the highest stands above the body's lowest
-    value.  This is the prominence of the ring's peaks (lobes) on the
-    whole section.  Returns [(lab angle [rad] of the maximum's cell about
-    the axis, prominence, area fraction)], the most prominent first."""
-    phis = np.where(_body(f), small_fraction(f), np.nan).ravel()
-    V = cell_areas(X, Y).ravel()
-    grains = np.sum(V[(f["alpha.air"] < 0.5).ravel()])
-    xc, yc = (c.ravel() for c in centres(X, Y))
-    least = min_area * grains
-    cols = f["alpha.air"].shape[1]
-    cells = np.flatnonzero(np.isfinite(phis))
-    parent = np.full(phis.size, -1)     # -1: not yet above the level
-    top = np.arange(phis.size)          # a component's highest cell
-    area = V.copy()
+def lobe_profile(X, Y, f, radii=LOBE_ANNULUS, bins=LOBE_BINS):
+    """phi^s of the body (_body: grains below the creep boundary, not the
+    avalanche) in the annulus radii[0] L < r < radii[1] L about the axis,
+    area-weighted mean per sector of the lab angle, from the fields of grid
+    (alpha.small, alpha.large, alpha.air, I): the sectors' centre angles
+    [rad] and means (nan where a sector has no body cell).  The lobes and
+    the arms of the pattern are radial: here they are peaks."""
+    L = np.max(np.hypot(X, Y)) / math.sqrt(2)
+    xc, yc = centres(X, Y)
+    r = np.hypot(xc, yc)
+    cells = _body(f) & (r > radii[0] * L) & (r < radii[1] * L)
+    V = cell_areas(X, Y)[cells]
+    k = (np.mod(np.arctan2(yc[cells], xc[cells]), 2 * math.pi)
+         / (2 * math.pi) * bins).astype(int) % bins
+    total = np.bincount(k, V * small_fraction(f)[cells], bins)
+    area = np.bincount(k, V, bins)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.where(area > 0, total / area, np.nan)
+    return (np.arange(bins) + 0.5) * 2 * math.pi / bins, mean
 
-    def root(c):
-        while parent[c] != c:
-            parent[c] = parent[parent[c]]
-            c = parent[c]
-        return c
 
-    found = []
-    order = cells[np.argsort(-phis[cells], kind="stable")]
-    for c in order:                     # lower the level cell by cell
-        parent[c] = c
-        i, j = divmod(c, cols)
-        for nb in (c - cols if i > 0 else -1, c + cols,
-                   c - 1 if j > 0 else -1, c + 1 if j + 1 < cols else -1):
-            if not 0 <= nb < phis.size or parent[nb] < 0:
-                continue
-            a, b = root(c), root(nb)
-            if a == b:
-                continue
-            # b ends here: the lower maximum of two lobe-sized regions, or
-            # the smaller region (a speck joins its neighbour unrecorded)
-            if min(area[a], area[b]) >= least:
-                lower = phis[top[a]] < phis[top[b]]
-            else:
-                lower = area[a] < area[b]
-            if lower:
-                a, b = b, a
-            if area[b] >= least:
-                found.append((top[b], phis[top[b]] - phis[c], area[b]))
-            parent[b] = a
-            area[a] += area[b]
-    for r in {root(c) for c in cells}:
-        if area[r] >= least:
-            found.append((top[r], phis[top[r]] - phis[order[-1]], area[r]))
-    lobes = [(math.atan2(yc[c], xc[c]), float(h), float(a / grains))
-             for c, h, a in found if h >= prominence]
-    return sorted(lobes, key=lambda x: -x[1])
+def lobe_angles(X, Y, f, prominence=LOBE_PROMINENCE_ANNULUS):
+    """The lobes of the body at a time: the lab angles [rad] of the peaks
+    of lobe_profile of prominence at least `prominence`."""
+    theta, mean = lobe_profile(X, Y, f)
+    valid = np.isfinite(mean)
+    return theta[_circular_peaks(np.where(valid, mean, 0.0), valid,
+                                 prominence)]
 
 
 def lobe_spacing(angles):
@@ -697,12 +673,12 @@ def summary(case):
     out["surface_rise_last_revolution"] = surface_rise(case, rows, names)
     out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
         case, names)
-    maxima = [[x[0] for x in lobe_maxima(*grid(
-        case, n, ["alpha.small", "alpha.large", "alpha.air", "I"]))]
-        for n in names]
-    out["lobe_maxima_last_revolution"] = [len(m) for m in maxima]
-    out["lobe_maxima_median"] = float(np.median([len(m) for m in maxima]))
-    spacing = [lobe_spacing(m) for m in maxima]
+    angles = [lobe_angles(*grid(case, n, ["alpha.small", "alpha.large",
+                                          "alpha.air", "I"]))
+              for n in names]
+    out["lobes_annulus_last_revolution"] = [len(a) for a in angles]
+    out["lobes_annulus_median"] = float(np.median([len(a) for a in angles]))
+    spacing = [lobe_spacing(a) for a in angles]
     spacing = [x for x in spacing if x is not None]
     out["lobe_spacing_deg_median"] = (float(np.degrees(np.median(spacing)))
                                       if spacing else None)
@@ -992,7 +968,7 @@ def results_table(numbers):
          if not r.get("quarter_turn_change_last_revolution") else
          "{lab:.3f} / {drum:.3f} ({variation:.3f})".format(
              **r["quarter_turn_change_last_revolution"])),
-        ("small-rich lobes in the body (`lobe_maxima`), median over the "
+        ("small-rich lobes in the body (`lobe_angles`), median over the "
          "last revolution; the angle between neighbours", _lobes_cell),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
@@ -1025,11 +1001,11 @@ def results_table(numbers):
 
 def _lobes_cell(r):
     """Lobe count and spacing of a run entry, for the tables."""
-    if r.get("lobe_maxima_median") is None:
+    if r.get("lobes_annulus_median") is None:
         return "–"
     spacing = r.get("lobe_spacing_deg_median")
-    return (f"{r['lobe_maxima_median']:g}" if spacing is None else
-            f"{r['lobe_maxima_median']:g}, {spacing:.0f}° apart")
+    return (f"{r['lobes_annulus_median']:g}" if spacing is None else
+            f"{r['lobes_annulus_median']:g}, {spacing:.0f}° apart")
 
 
 def paper_table(numbers):
@@ -1043,7 +1019,7 @@ def paper_table(numbers):
             return "–"
         return f"{J['80'] / J['40'] - 1:+.0%}"
     rows = [
-        ("small-rich lobes in the body (`lobe_maxima`), median over the "
+        ("small-rich lobes in the body (`lobe_angles`), median over the "
          "last revolution; the angle between neighbours", PAPER["lobes"],
          _lobes_cell),
         ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
