@@ -902,8 +902,8 @@ PAPER_BEGIN = "<!-- drum against the paper: {} -->"
 PAPER_END = "<!-- end of drum against the paper: {} -->"
 # What section 7 of the paper reports, for paper_table
 PAPER = {
-    "lobes": "3 in all, towards the corners (120° apart), turning with a "
-             "period of about 7.5 s",
+    "lobes": "3, towards the corners",
+    "lobe_period": "about 7.5 s, faster than the drum (§7.3)",
     "J_change": "small: settled after about four revolutions (figure 13)",
     "surface_angle": "close to ζ_s = 20.16° (§7.2)",
     "flowing_depth": "at most about 1.6 cm (§7.2)",
@@ -1022,6 +1022,10 @@ def paper_table(numbers):
         ("small-rich lobes in the body (`lobe_angles`), median over the "
          "last revolution; the angle between neighbours", PAPER["lobes"],
          _lobes_cell),
+        ("period of the lobes' rotation in the lab, the drum's 10 s "
+         "(`lobe_period`, last revolution)", PAPER["lobe_period"],
+         lambda r: "–" if r.get("lobe_period_s") is None
+         else f"{r['lobe_period_s']:.1f} s"),
         ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
          PAPER["J_change"], change),
         ("surface inclination, mean after 20 s", PAPER["surface_angle"],
