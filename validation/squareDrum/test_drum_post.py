@@ -296,3 +296,24 @@ def test_flat_surface_holds_the_area_below_it():
     a = 0.005                       # a triangle at the lower corner
     assert post.flat_surface(math.pi / 4, 0.0, a, L) == \
         pytest.approx(-math.sqrt(2) * L + math.sqrt(a))
+
+
+def test_lobe_drift_follows_the_lobes_against_the_drum():
+    """Three lobes 90 degrees apart turning 12 degrees/s faster than the
+    drum, one of them leaving and another forming 90 degrees away at the
+    third write: the drift is -12 degrees/s; lobes that turn with the
+    drum have none."""
+    omega = -360 / post.PERIOD              # degrees/s
+    times = [70.0, 70.625, 71.25, 71.875]
+    angles = []
+    for k, t in enumerate(times):
+        base = (omega - 12) * (t - 70)
+        lobes = [base + 180, base + 270] + ([base + 360] if k < 2 else
+                                            [base + 90])
+        angles.append(np.radians(lobes))
+    drift, matches = post.lobe_drift(angles, times)
+    assert math.degrees(drift) == pytest.approx(-12)
+    assert matches == 2 * 3 + 2
+    still = [np.radians([omega * (t - 70) + 45, omega * (t - 70) + 135])
+             for t in times]
+    assert post.lobe_drift(still, times)[0] == pytest.approx(0, abs=1e-9)

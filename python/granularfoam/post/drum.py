@@ -50,6 +50,7 @@ LOBE_PROMINENCE = 0.1           # of phi^s, for a lobe to count
 LOBE_ANNULUS = (0.4, 0.9)       # radii / L of lobe_profile's annulus
 LOBE_BINS = 72                  # its sectors, 5 degrees each
 LOBE_PROMINENCE_ANNULUS = 0.05  # of its mean phi^s, for a lobe to count
+LOBE_MATCH = math.radians(20)   # a lobe's largest move between writes
 FIG11_FIRST, FIG11_LAST = 72.5, 78.75   # panels (b)-(l) of figure 11
 J_SERIES_STEP = 0.25            # s, J(t) kept in drum.json for figure 13
 
@@ -345,11 +346,21 @@ def lobe_profile(X, Y, f, radii=LOBE_ANNULUS, bins=LOBE_BINS):
 
 def lobe_angles(X, Y, f, prominence=LOBE_PROMINENCE_ANNULUS):
     """The lobes of the body at a time: the lab angles [rad] of the peaks
-    of lobe_profile of prominence at least `prominence`."""
+    of lobe_profile of prominence at least `prominence`, each placed
+    between its sectors by the parabola through its sector and the two
+    beside it (where both are in the body)."""
     theta, mean = lobe_profile(X, Y, f)
     valid = np.isfinite(mean)
-    return theta[_circular_peaks(np.where(valid, mean, 0.0), valid,
-                                 prominence)]
+    peaks = _circular_peaks(np.where(valid, mean, 0.0), valid, prominence)
+    n, width = mean.size, 2 * math.pi / mean.size
+    out = []
+    for k in peaks:
+        a, b, c = mean[(k - 1) % n], mean[k], mean[(k + 1) % n]
+        curve = a - 2 * b + c
+        shift = (0.5 * (a - c) / curve
+                 if np.isfinite(a + c) and curve < 0 else 0.0)
+        out.append(theta[k] + shift * width)
+    return np.array(out)
 
 
 def lobe_spacing(angles):
@@ -446,6 +457,31 @@ def lobe_period(case, names):
             rates.append(best[1] * 2 * math.pi / n / dt)
     rate = float(np.mean(rates))
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
+
+
+def lobe_drift(angles, times, match=LOBE_MATCH):
+    """How fast the lobes move against the drum [rad/s]: lobe angles
+    (lobe_angles, one array per written time of `times`) in the drum's
+    frame (the lab angle minus Omega t), each lobe matched to the nearest
+    of the time before within `match` [rad] (the lobes are 90 degrees or
+    more apart and move a few degrees between writes; one further away
+    has formed or left the body); the median of the matched moves over
+    their intervals, and the number of matches.  Negative: clockwise, as
+    the drum turns, so lobes that turn faster than the drum drift
+    negative."""
+    omega = -2 * math.pi / PERIOD
+    moves = []
+    for (a0, t0), (a1, t1) in zip(zip(angles, times),
+                                  zip(angles[1:], times[1:])):
+        d0 = np.asarray(a0) - omega * t0
+        for d in np.asarray(a1) - omega * t1:
+            if not len(d0):
+                break
+            gap = np.angle(np.exp(1j * (d - d0)))
+            k = int(np.argmin(np.abs(gap)))
+            if abs(gap[k]) <= match:
+                moves.append(gap[k] / (t1 - t0))
+    return (float(np.median(moves)) if moves else None), len(moves)
 
 
 def quarter_turn_map(field):
@@ -678,6 +714,9 @@ def summary(case):
               for n in names]
     out["lobes_annulus_last_revolution"] = [len(a) for a in angles]
     out["lobes_annulus_median"] = float(np.median([len(a) for a in angles]))
+    drift, matches = lobe_drift(angles, [float(n) for n in names])
+    out["lobe_drift_deg_s"] = None if drift is None else math.degrees(drift)
+    out["lobe_drift_matches"] = matches
     spacing = [lobe_spacing(a) for a in angles]
     spacing = [x for x in spacing if x is not None]
     out["lobe_spacing_deg_median"] = (float(np.degrees(np.median(spacing)))
@@ -903,7 +942,8 @@ PAPER_END = "<!-- end of drum against the paper: {} -->"
 # What section 7 of the paper reports, for paper_table
 PAPER = {
     "lobes": "3, towards the corners",
-    "lobe_period": "about 7.5 s, faster than the drum (§7.3)",
+    "lobe_period": "faster than the drum: a period of about 7.5 s (§7.3), "
+                   "so −12°/s",
     "J_change": "small: settled after about four revolutions (figure 13)",
     "surface_angle": "close to ζ_s = 20.16° (§7.2)",
     "flowing_depth": "at most about 1.6 cm (§7.2)",
@@ -1008,6 +1048,15 @@ def _lobes_cell(r):
             f"{r['lobes_annulus_median']:g}, {spacing:.0f}° apart")
 
 
+def _drift_cell(r):
+    """The lobes' drift against the drum and their period in the lab."""
+    drift = r.get("lobe_drift_deg_s")
+    if drift is None:
+        return "–"
+    lab = abs(math.degrees(-2 * math.pi / PERIOD) + drift)
+    return f"{drift:+.1f}°/s; {360 / lab:.1f} s" if lab else f"{drift:+.1f}°/s"
+
+
 def paper_table(numbers):
     """Markdown rows comparing the runs of numbers (drum.json's run
     entries) with what section 7 of the paper reports (PAPER)."""
@@ -1022,10 +1071,9 @@ def paper_table(numbers):
         ("small-rich lobes in the body (`lobe_angles`), median over the "
          "last revolution; the angle between neighbours", PAPER["lobes"],
          _lobes_cell),
-        ("period of the lobes' rotation in the lab, the drum's 10 s "
-         "(`lobe_period`, last revolution)", PAPER["lobe_period"],
-         lambda r: "–" if r.get("lobe_period_s") is None
-         else f"{r['lobe_period_s']:.1f} s"),
+        ("the lobes' motion against the drum (`lobe_drift`, last "
+         "revolution; negative: ahead of the drum); their period in the "
+         "lab", PAPER["lobe_period"], _drift_cell),
         ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
          PAPER["J_change"], change),
         ("surface inclination, mean after 20 s", PAPER["surface_angle"],
