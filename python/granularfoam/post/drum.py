@@ -43,6 +43,7 @@ from .drumTension import step_table  # noqa: E402
 
 DPI = 150
 PERIOD = 10.0                   # s, one revolution at Omega = -pi/5
+OMEGA = -2 * math.pi / PERIOD   # rad/s, clockwise (section 7.1)
 I1 = 0.01886                    # table 4: below it the law creeps
 ALPHA_SCHEME = "vanLeer"        # the tutorial's div(phi,alpha)
 LOBE_RING = "r0.6"              # the circle on which lobes are counted
@@ -244,7 +245,7 @@ def small_fraction(f):
                     f["alpha.small"] / np.maximum(grains, 1e-12), np.nan)
 
 
-def relative_speed(f, xc, yc, omega=-2 * math.pi / PERIOD):
+def relative_speed(f, xc, yc, omega=OMEGA):
     """|u - Omega k x r| (7.3), the speed relative to the drum, from the
     components 'Ux', 'Uy' of grid at the centres xc, yc."""
     return np.hypot(f["Ux"] + omega * yc, f["Uy"] - omega * xc)
@@ -469,12 +470,11 @@ def lobe_drift(angles, times, match=LOBE_MATCH):
     their intervals, and the number of matches.  Negative: clockwise, as
     the drum turns, so lobes that turn faster than the drum drift
     negative."""
-    omega = -2 * math.pi / PERIOD
     moves = []
     for (a0, t0), (a1, t1) in zip(zip(angles, times),
                                   zip(angles[1:], times[1:])):
-        d0 = np.asarray(a0) - omega * t0
-        for d in np.asarray(a1) - omega * t1:
+        d0 = np.asarray(a0) - OMEGA * t0
+        for d in np.asarray(a1) - OMEGA * t1:
             if not len(d0):
                 break
             gap = np.angle(np.exp(1j * (d - d0)))
@@ -575,10 +575,9 @@ def surface_rise(case, rows, names):
     L = parameters(case)["L"]
     X, Y, f = grid(case, names[0], ["alpha.air"])
     area = float(np.sum((1 - f["alpha.air"]) * cell_areas(X, Y)))
-    omega = -2 * math.pi / PERIOD
     t = [r["t"] for r in rows]
     measured = [r["surface_distance_from_axis"] for r in rows]
-    flat = [flat_surface(omega * r["t"], r["surface_angle_deg"], area, L)
+    flat = [flat_surface(OMEGA * r["t"], r["surface_angle_deg"], area, L)
             for r in rows]
     return {"t": t, "measured_m": measured, "flat_m": flat,
             "measured_range_m": float(np.ptp(measured)),
@@ -1053,8 +1052,9 @@ def _drift_cell(r):
     drift = r.get("lobe_drift_deg_s")
     if drift is None:
         return "–"
-    lab = abs(math.degrees(-2 * math.pi / PERIOD) + drift)
-    return f"{drift:+.1f}°/s; {360 / lab:.1f} s" if lab else f"{drift:+.1f}°/s"
+    lab = abs(math.degrees(OMEGA) + drift)
+    return (f"{drift:+.1f}°/s; {360 / lab:.1f} s" if lab
+            else f"{drift:+.1f}°/s")
 
 
 def paper_table(numbers):
