@@ -190,11 +190,13 @@ def test_figure_revolutions_draws_the_written_revolutions(monkeypatch,
         x, _ = post.centres(X, Y)
         small = 0.5 + 2 * x
         return X, Y, {"alpha.small": small, "alpha.large": 1 - small,
-                      "alpha.air": np.zeros((N, N))}
+                      "alpha.air": np.zeros((N, N)),
+                      "I": np.full((N, N), 1e-4)}
 
     monkeypatch.setattr(post, "grid", grid)
     monkeypatch.setattr(post, "_time_name", lambda case, t: _name(times, t))
     monkeypatch.setattr(post, "label", lambda case: "N6_test")
+    monkeypatch.setattr(post, "parameters", lambda case: {"L": 0.1})
     out = tmp_path / "revolutions.png"
     assert post.figure_revolutions("drum", out) == [10.0, 20.0]
     assert out.stat().st_size > 0

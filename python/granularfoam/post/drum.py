@@ -860,18 +860,23 @@ def figure_revolutions(case, out):
     """phi^s at the end of every revolution written (t = 10, 20, ... s),
     the drum back in its starting orientation each time: how the pattern
     develops, and figure 11(a) at 10 s, for a run that has not reached
-    80 s as well.  Returns the times drawn."""
+    80 s as well; red: the lobes lobe_angles counts, across its annulus.
+    Returns the times drawn."""
     times = [k * PERIOD for k in range(1, 9)
              if _has_time(case, k * PERIOD)]
     assert times, f"{case} has not written t = {PERIOD:g} s"
     fig, axes = plt.subplots(2, 4, figsize=(10, 5.4))
     for ax in axes.flat:
         ax.set_axis_off()
+    L = parameters(case)["L"]
     for ax, t in zip(axes.flat, times):
         X, Y, f = grid(case, _time_name(case, t),
-                       ["alpha.small", "alpha.large", "alpha.air"])
+                       ["alpha.small", "alpha.large", "alpha.air", "I"])
         pc = ax.pcolormesh(X, Y, small_fraction(f), cmap="viridis",
                            vmin=0, vmax=1, shading="flat")
+        for a in lobe_angles(X, Y, f):      # the lobes counted, radially
+            r = np.array(LOBE_ANNULUS) * L
+            ax.plot(r * math.cos(a), r * math.sin(a), "r-", lw=1)
         ax.set_axis_on()
         drum_axes(ax, X, Y)
         ax.set_title(f"t = {t:g} s", fontsize=9)
