@@ -319,3 +319,30 @@ def test_lobe_drift_follows_the_lobes_against_the_drum():
     still = [np.radians([omega * (t - 70) + 45, omega * (t - 70) + 135])
              for t in times]
     assert post.lobe_drift(still, times)[0] == pytest.approx(0, abs=1e-9)
+
+
+def test_lobe_lives_are_the_lobes_seen_to_form_and_to_leave():
+    """Lobes turning with the drum, 90 degrees apart: one seen over the
+    whole window (its life unknown, left out), one that forms at the
+    third write at -30 degrees and leaves after the seventh, 2.5 s later,
+    at -120 degrees; a lobe that splits in two keeps one track."""
+    omega = -360 / post.PERIOD              # degrees/s
+    times = [70 + 0.625 * k for k in range(9)]
+    angles = []
+    for k, t in enumerate(times):
+        turn = omega * (t - 70)
+        lobes = [turn + 10]
+        if 2 <= k <= 6:
+            lobes.append(turn + 15)                 # -30 degrees at 71.25 s
+        if k == 4:
+            lobes.append(turn + 17)                 # the split, 2 degrees on
+        angles.append(np.radians(lobes))
+    lives = post.lobe_lives(angles, times)
+    assert len(lives) == 2
+    main = max(lives, key=lambda x: x["life_s"])
+    assert main["life_s"] == pytest.approx(2.5)
+    assert main["first_deg"] == pytest.approx(330)
+    assert main["last_deg"] == pytest.approx(240)
+    assert min(x["life_s"] for x in lives) == pytest.approx(0)
+    tracks = post.lobe_tracks(angles, times)
+    assert sorted(len(t) for t in tracks) == [1, 5, 9]

@@ -460,28 +460,62 @@ def lobe_period(case, names):
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
+def lobe_tracks(angles, times, match=LOBE_MATCH):
+    """The lobes followed from write to write: lobe angles (lobe_angles,
+    one array per written time of `times`) in the drum's frame (the lab
+    angle minus Omega t), each lobe joined to the nearest lobe of the time
+    before within `match` [rad], nearest pairs first, one to one (the lobes
+    are 90 degrees or more apart and move a few degrees between writes; one
+    further away has formed or left the body).  A list of tracks, each a
+    list of (time, lab angle [rad]) in time order."""
+    tracks, open_ = [], {}          # open_: lobe index at the last time
+    for k, (a, t) in enumerate(zip(angles, times)):
+        a = np.asarray(a, dtype=float)
+        joined = {}
+        if k:
+            a0, t0 = np.asarray(angles[k - 1], dtype=float), times[k - 1]
+            pairs = sorted(
+                (abs(g), i, j) for i, d in enumerate(a - OMEGA * t)
+                for j, g in enumerate(np.angle(np.exp(
+                    1j * (d - (a0 - OMEGA * t0))))))
+            used = set()
+            for g, i, j in pairs:
+                if g <= match and i not in joined and j not in used:
+                    joined[i] = open_[j]
+                    used.add(j)
+        now = {}
+        for i, x in enumerate(a):
+            if i not in joined:
+                tracks.append([])
+                joined[i] = len(tracks) - 1
+            tracks[joined[i]].append((t, float(x)))
+            now[i] = joined[i]
+        open_ = now
+    return tracks
+
+
 def lobe_drift(angles, times, match=LOBE_MATCH):
-    """How fast the lobes move against the drum [rad/s]: lobe angles
-    (lobe_angles, one array per written time of `times`) in the drum's
-    frame (the lab angle minus Omega t), each lobe matched to the nearest
-    of the time before within `match` [rad] (the lobes are 90 degrees or
-    more apart and move a few degrees between writes; one further away
-    has formed or left the body); the median of the matched moves over
-    their intervals, and the number of matches.  Negative: clockwise, as
-    the drum turns, so lobes that turn faster than the drum drift
-    negative."""
-    moves = []
-    for (a0, t0), (a1, t1) in zip(zip(angles, times),
-                                  zip(angles[1:], times[1:])):
-        d0 = np.asarray(a0) - OMEGA * t0
-        for d in np.asarray(a1) - OMEGA * t1:
-            if not len(d0):
-                break
-            gap = np.angle(np.exp(1j * (d - d0)))
-            k = int(np.argmin(np.abs(gap)))
-            if abs(gap[k]) <= match:
-                moves.append(gap[k] / (t1 - t0))
+    """How fast the lobes move against the drum [rad/s]: the median of the
+    moves in the drum's frame of the lobes followed by lobe_tracks over
+    their intervals, and the number of moves.  Negative: clockwise, as the
+    drum turns, so lobes that turn faster than the drum drift negative."""
+    moves = [(np.angle(np.exp(1j * ((a1 - OMEGA * t1) - (a0 - OMEGA * t0))))
+              / (t1 - t0))
+             for track in lobe_tracks(angles, times, match)
+             for (t0, a0), (t1, a1) in zip(track[:-1], track[1:])]
     return (float(np.median(moves)) if moves else None), len(moves)
+
+
+def lobe_lives(angles, times, match=LOBE_MATCH):
+    """The lobes seen both to form and to leave the body within `times`
+    (lobe_tracks that start after the first time and end before the last):
+    per lobe its life [s] and the lab angles [degrees, anticlockwise from
+    +x] at which it was first and last seen."""
+    return [{"life_s": track[-1][0] - track[0][0],
+             "first_deg": math.degrees(track[0][1]) % 360,
+             "last_deg": math.degrees(track[-1][1]) % 360}
+            for track in lobe_tracks(angles, times, match)
+            if track[0][0] > times[0] and track[-1][0] < times[-1]]
 
 
 def quarter_turn_map(field):
@@ -716,6 +750,11 @@ def summary(case):
     drift, matches = lobe_drift(angles, [float(n) for n in names])
     out["lobe_drift_deg_s"] = None if drift is None else math.degrees(drift)
     out["lobe_drift_matches"] = matches
+    lives = lobe_lives(angles, [float(n) for n in names])
+    out["lobe_lives_last_revolution"] = lives
+    out["lobe_life_s_median"] = (float(np.median([x["life_s"]
+                                                  for x in lives]))
+                                 if lives else None)
     spacing = [lobe_spacing(a) for a in angles]
     spacing = [x for x in spacing if x is not None]
     out["lobe_spacing_deg_median"] = (float(np.degrees(np.median(spacing)))
