@@ -346,3 +346,19 @@ def test_lobe_lives_are_the_lobes_seen_to_form_and_to_leave():
     assert min(x["life_s"] for x in lives) == pytest.approx(0)
     tracks = post.lobe_tracks(angles, times)
     assert sorted(len(t) for t in tracks) == [1, 5, 9]
+
+
+def test_lobe_lives_cell_averages_the_angles_round_the_circle():
+    """Lobes forming at 350 and 10 degrees form at 0 on average, not 180;
+    a run without lobe lives shows none."""
+    run = {"lobe_life_s_median": 5.0,
+           "lobe_lives_last_revolution": [
+               {"life_s": 5.0, "first_deg": 350.0, "last_deg": 170.0},
+               {"life_s": 5.0, "first_deg": 10.0, "last_deg": 190.0}]}
+    cell = post._lives_cell(run)
+    assert cell.startswith("5.00 s (2), ")
+    first, last = (float(x.strip().rstrip("°"))
+                   for x in cell.split(", ")[1].split("→"))
+    assert min(first, 360 - first) == pytest.approx(0, abs=1e-6)
+    assert last == pytest.approx(180)
+    assert post._lives_cell({}) == "–"

@@ -1053,6 +1053,10 @@ def results_table(numbers):
              **r["quarter_turn_change_last_revolution"])),
         ("small-rich lobes in the body (`lobe_angles`), median over the "
          "last revolution; the angle between neighbours", _lobes_cell),
+        ("the lobes' life in the body (`lobe_lives`: from forming to "
+         "leaving, the lobes seen to do both in the last revolution), "
+         "median [s] (lobes); lab angles where they form and leave, mean",
+         _lives_cell),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
         ("lowest p in the grains, written times of the last revolution [Pa]",
@@ -1089,6 +1093,21 @@ def _lobes_cell(r):
     spacing = r.get("lobe_spacing_deg_median")
     return (f"{r['lobes_annulus_median']:g}" if spacing is None else
             f"{r['lobes_annulus_median']:g}, {spacing:.0f}° apart")
+
+
+def _lives_cell(r):
+    """The lobes' life in the body and where they form and leave (the
+    angles' circular mean)."""
+    lives = r.get("lobe_lives_last_revolution")
+    if not lives:
+        return "–"
+
+    def mean_deg(key):
+        z = np.mean([np.exp(1j * math.radians(x[key])) for x in lives])
+        return math.degrees(np.angle(z)) % 360
+    return "{:.2f} s ({}), {:.0f}° → {:.0f}°".format(
+        r["lobe_life_s_median"], len(lives), mean_deg("first_deg"),
+        mean_deg("last_deg"))
 
 
 def _drift_cell(r):
