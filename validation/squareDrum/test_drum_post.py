@@ -270,6 +270,32 @@ def test_sidewall_reads_the_end_walls_of_fvOptions(tmp_path):
     assert post.sidewall(tmp_path) == {"W": 0.01, "muW": 0.3}
 
 
+def test_fill_is_the_tutorials_70_percent_and_follows_the_surface(tmp_path):
+    """The tutorial's initial surface at H = 0.04 m fills 70 % of the
+    drum; moved to H = 0 (a copy's setGranularFieldsDict edited) 50 %,
+    which the run's key and title carry."""
+    project = Path(__file__).resolve().parents[2]
+    system = tmp_path / "system"
+    system.mkdir()
+    tutorial = project / "tutorials" / "squareDrum" / "system"
+    for name in ("drumParameters", "setGranularFieldsDict"):
+        (system / name).write_text((tutorial / name).read_text())
+    assert post.fill(tmp_path) == pytest.approx(0.7)
+    text = (system / "setGranularFieldsDict").read_text()
+    assert "(0 0.04 0)" in text
+    (system / "setGranularFieldsDict").write_text(
+        text.replace("(0 0.04 0)", "(0 0 0)"))
+    assert post.fill(tmp_path) == pytest.approx(0.5)
+    assert post._run_title({"N": 50, "coupling": "Krylov BFBt 20",
+                            "nCorrectors": 30,
+                            "etaMax": 3000, "fill": 0.5}).endswith(
+        ", fill 50 %")
+    assert "fill" not in post._run_title({"N": 50, "etaMax": 3000,
+                                          "nCorrectors": 30,
+                                          "coupling": "Krylov BFBt 20",
+                                          "fill": 0.7})
+
+
 def test_readme_sidewall_table_is_rendered_from_sidewall_json():
     """The drum README's sidewall table is what sidewall.json holds,
     rendered by granularfoam.post.drumSidewall (--readme)."""

@@ -125,10 +125,29 @@ def sidewall(case):
     return {k: float(v[-1]) for k, v in values.items()}
 
 
+FILL = 0.7                      # the paper's fill fraction, H = 0.04 m (7.1)
+
+
+def fill(case):
+    """The fill fraction of the drum, (H + L)/(2 L), from the grains'
+    initial surface in case/system/setGranularFieldsDict (a flat surface
+    through `point` with the tutorial's `normal` (0 1 0))."""
+    path = Path(case) / "system" / "setGranularFieldsDict"
+    text = re.sub(r"//.*", "", read_text(path))
+    normal = re.search(r"\bnormal\s*\(([^)]*)\)", text)
+    point = re.search(r"\bpoint\s*\(([^)]*)\)", text)
+    assert point and normal, f"{path}: no point or normal"
+    assert [float(x) for x in normal.group(1).split()] == [0, 1, 0], \
+        f"{path}: a normal other than (0 1 0)"
+    L = parameters(case)["L"]
+    return (float(point.group(1).split()[1]) + L) / (2 * L)
+
+
 def label(case):
     """The key of a run in drum.json and its figures: N, correctors and
-    etaMax, the advection scheme when it is not the tutorial's, and the
-    end walls' gap and friction where the case has them."""
+    etaMax, the advection scheme when it is not the tutorial's, the end
+    walls' gap and friction where the case has them, and the fill when it
+    is not the paper's."""
     par = parameters(case)
     key = (f"N{int(par['N'])}_{coupling(case).replace(' ', '')}"
            f"_etaMax{par['etaMax']:g}")
@@ -137,6 +156,8 @@ def label(case):
     walls = sidewall(case)
     if walls:
         key += f"_walls{walls['W']:g}m_muW{walls['muW']:g}"
+    if abs(fill(case) - FILL) > 1e-9:
+        key += f"_fill{fill(case) * 100:.0f}"
     return key
 
 
@@ -687,7 +708,7 @@ def summary(case):
     out = {"N": int(par["N"]), "nCorrectors": n_correctors(case),
            "coupling": coupling(case),
            "etaMax": par["etaMax"], "alphaScheme": alpha_scheme(case),
-           "sidewall": sidewall(case),
+           "sidewall": sidewall(case), "fill": fill(case),
            "endTime": float(m["t"][-1])}
     out.update(run_cost(case))
     out["J_revolution"] = {
@@ -1003,15 +1024,17 @@ def _runs(numbers):
 
 
 def _run_title(r):
-    """A run's column title: mesh, coupling, cap, and the advection
-    scheme when it is not the tutorial's."""
+    """A run's column title: mesh, coupling, cap, the advection scheme
+    when it is not the tutorial's, the end walls and the fill."""
     return (f"N = {r['N']}, "
             f"{r.get('coupling', str(r['nCorrectors']) + ' correctors')}, "
             f"η_max {r['etaMax']:g}"
             + (f", {r['alphaScheme']}" if r.get("alphaScheme", ALPHA_SCHEME)
                != ALPHA_SCHEME else "")
             + (", end walls {W:g} m apart, μ_w {muW:g}".format(
-                **r["sidewall"]) if r.get("sidewall") else ""))
+                **r["sidewall"]) if r.get("sidewall") else "")
+            + (f", fill {r['fill'] * 100:.0f} %"
+               if abs(r.get("fill", FILL) - FILL) > 1e-9 else ""))
 
 
 def results_table(numbers):
