@@ -1,13 +1,14 @@
 """The benchmark driver behind bench/run (see bench/README.md).
 
 Generates the cases (generate.py) in bench/work/, runs every solver
-configuration (stock, granular, granular-implicit) on every case, mesh and
-rank count the same number of fixed time steps, repeated --reps times (the
-repetitions interleaved, so that a slow spell of the machine spreads over
-all configurations); then the time per simulated second: the granular
-solver, explicit and implicit, serial, on the chute's 155 x 16 mesh over
---interval simulated seconds with the time step adjusted to the CFL (4.11).
-Writes bench/results.json and BENCHMARKS.md (report.py).
+configuration (stock, granular, granular-implicit, granular-krylov) on every
+case, mesh and rank count the same number of fixed time steps, repeated
+--reps times (the repetitions interleaved, so that a slow spell of the
+machine spreads over all configurations); then the time per simulated
+second: the granular solver, explicit, implicit and Krylov, serial, on the
+chute's 155 x 16 mesh over --interval simulated seconds with the time step
+adjusted to the CFL (4.11).  Writes bench/results.json and BENCHMARKS.md
+(report.py).
 """
 
 import argparse
@@ -42,7 +43,8 @@ INTERVAL = 0.2
 QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1, "interval": 0.02}
 # The time per simulated second: case, mesh, solver configurations (serial)
 ADAPTIVE = {"case": "chute", "mesh": (155, 16),
-            "solvers": ("granular", "granular-implicit")}
+            "solvers": ("granular", "granular-implicit",
+                        "granular-krylov")}
 MPIRUN = ("mpirun", "--oversubscribe", "--bind-to", "none")
 
 EXECUTION = re.compile(
@@ -170,7 +172,7 @@ def sha256(path):
 
 def executables():
     """The executable of every solver configuration: Debian's stock binary
-    and the project's build (explicit and implicit)."""
+    and the project's build (explicit, implicit and Krylov)."""
     granular = shutil.which("granularSegregationFoam")
     appbin = os.environ.get("FOAM_USER_APPBIN", "")
     if not granular or not granular.startswith(appbin):
@@ -180,7 +182,7 @@ def executables():
     if not os.access(stock, os.X_OK):
         sys.exit(f"bench/run: {stock} not found (Debian's openfoam package)")
     return {"stock": stock, "granular": granular,
-            "granular-implicit": granular}
+            "granular-implicit": granular, "granular-krylov": granular}
 
 
 def software(exes):
@@ -341,8 +343,8 @@ def run_adaptive(case_dir, exe, rep, interval):
 
 def summarise_adaptive(configs, runs):
     """Medians over the repetitions of every configuration, and the
-    speed-up of the implicit configuration (explicit time over implicit
-    time per simulated second)."""
+    speed-up of every other configuration over the explicit one (explicit
+    time over its time per simulated second), by solver."""
     rows = []
     for config in configs:
         mine = [r for r in runs if r["config"] == config["name"]]
@@ -367,15 +369,16 @@ def summarise_adaptive(configs, runs):
                 min(r["cpu_per_simulated_s"] for r in mine),
         })
     explicit = next(r for r in rows if r["solver"] == "granular")
-    implicit = next(r for r in rows if r["solver"] == "granular-implicit")
     speedup = {
-        "wall": explicit["wall_per_simulated_s"]
-                / implicit["wall_per_simulated_s"],
-        "cpu": explicit["cpu_per_simulated_s"]
-               / implicit["cpu_per_simulated_s"],
-        "deltaT": implicit["deltaT_median_s"] / explicit["deltaT_median_s"],
-        "steps": explicit["steps"] / implicit["steps"],
-    }
+        row["solver"]: {
+            "wall": explicit["wall_per_simulated_s"]
+                    / row["wall_per_simulated_s"],
+            "cpu": explicit["cpu_per_simulated_s"]
+                   / row["cpu_per_simulated_s"],
+            "deltaT": row["deltaT_median_s"] / explicit["deltaT_median_s"],
+            "steps": explicit["steps"] / row["steps"],
+        }
+        for row in rows if row is not explicit}
     return rows, speedup
 
 
@@ -434,6 +437,7 @@ def main(argv):
                        for nx, nz in args.meshes},
             "solvers": list(generate.SOLVERS),
             "implicit_fvSolution": generate.IMPLICIT,
+            "krylov_fvSolution": generate.krylov_entries(),
         },
     }
 
@@ -473,6 +477,7 @@ def main(argv):
                 "mesh": f"{nx}x{nz}", "dir": case_dir,
                 "cells": params["cells"], "interval": args.interval,
                 "deltaT_initial": params["deltaT"],
+                "maxCo": params["maxCo"], "maxDeltaT": params["maxDeltaT"],
             })
 
     runs = []
@@ -526,7 +531,11 @@ def main(argv):
                 "reps": args.reps,
                 "controlDict": {**generate.ADJUSTABLE_STEP,
                                 "maxDeltaT": args.max_delta_t,
-                                "deltaT": adaptive[0]["deltaT_initial"]},
+                                "deltaT": adaptive[0]["deltaT_initial"],
+                                **{"krylov": {"maxCo": c["maxCo"],
+                                              "maxDeltaT": c["maxDeltaT"]}
+                                   for c in adaptive
+                                   if c["solver"] == "granular-krylov"}},
             },
             "configs": adaptive,
             "runs": adaptive_runs,

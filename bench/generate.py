@@ -13,7 +13,9 @@ plus two generated files: system/benchParameters (mesh, time step, number of
 steps, time-step control, application) and system/inletProfile (the chute's
 inflow tabulated on the inlet faces).  The implicit configuration of the
 granular solver ('granular-implicit') is the granular case with three
-entries of its system/fvSolution changed by foamDictionary (IMPLICIT).  Then
+entries of its system/fvSolution changed by foamDictionary (IMPLICIT), the
+Krylov configuration ('granular-krylov') the granular case with the chute
+tutorial's coupling (KRYLOV).  Then
 blockMesh, setFields and, for MPI runs, decomposePar.  Nothing here is
 edited by hand after generation.
 """
@@ -29,10 +31,11 @@ TEMPLATES = BENCH / "cases"
 REPO = BENCH.parent
 
 CASES = ("chute", "drum")
-SOLVERS = ("stock", "granular", "granular-implicit")
+SOLVERS = ("stock", "granular", "granular-implicit", "granular-krylov")
 APPLICATION = {"stock": "multiphaseInterFoam",
                "granular": "granularSegregationFoam",
-               "granular-implicit": "granularSegregationFoam"}
+               "granular-implicit": "granularSegregationFoam",
+               "granular-krylov": "granularSegregationFoam"}
 
 # 'granular-implicit': the common fvSolution with these PIMPLE entries set by
 # foamDictionary on the generated case: the viscous stress solved implicitly
@@ -43,6 +46,21 @@ IMPLICIT = {
     "PIMPLE/viscousStress": "implicit",
     "PIMPLE/nCorrectors": "20",
 }
+
+# 'granular-krylov': the chute tutorial's default coupling, these entries
+# of tutorials/chute/system/fvSolution read at generation time (so the
+# benchmark follows the tutorial) and set on the common fvSolution; with the
+# time step adjusted, also the tutorial's maxCo (controlDict) and maxDeltaT
+# (chuteParameters) (KRYLOV_STEP)
+KRYLOV = (
+    "PIMPLE/momentumPredictor",
+    "PIMPLE/viscousStress",
+    "PIMPLE/pressureCoupling",
+    "PIMPLE/Krylov",
+    'solvers/"alpha.*"/maxAlphaSubCycles',
+)
+KRYLOV_STEP = {"maxCo": "system/controlDict",
+               "maxDeltaT": "system/chuteParameters"}
 
 # Time-step control (controlDict, through benchParameters): fixed Delta t
 # for the time per cell and step, or adjusted to the total CFL (4.11) for
@@ -58,6 +76,7 @@ FROM_TUTORIAL = {
     "constant/g": "all",
     "constant/turbulenceProperties": "all",
     "constant/granularProperties": "granular chute",
+    "system/chuteParameters": "granular chute",    # granularProperties' d
 }
 
 # The chute's box and grain layer (tutorials/chute/system/chuteParameters)
@@ -74,10 +93,15 @@ VISCOUS_CFL = 0.8
 
 
 def foam_value(path, entry):
-    """One entry of an OpenFOAM dictionary, through foamDictionary."""
+    """One entry of an OpenFOAM dictionary, through foamDictionary, run in
+    the dictionary's case (where its #include "$FOAM_CASE/..." resolve)."""
+    path = Path(path).resolve()
+    case = (path.parent.parent if path.parent.name in ("system", "constant")
+            else path.parent)
     out = subprocess.run(
         ["foamDictionary", str(path), "-entry", entry, "-value"],
-        check=True, capture_output=True, text=True).stdout
+        check=True, capture_output=True, text=True, cwd=case,
+        env=dict(os.environ, PWD=str(case))).stdout
     return out.strip()
 
 
@@ -215,16 +239,33 @@ def count_cells(case_dir):
     raise RuntimeError(f"no nCells in {case_dir}/constant/polyMesh/owner")
 
 
-def set_implicit(case_dir):
-    """The implicit configuration: IMPLICIT set in the case's fvSolution by
-    foamDictionary (which expands the file's $macros as it rewrites it),
-    then read back."""
+def krylov_entries():
+    """The chute tutorial's entries KRYLOV, as foamDictionary reads them
+    (a dictionary on one line)."""
+    path = REPO / "tutorials/chute/system/fvSolution"
+    return {entry: " ".join(foam_value(path, entry).split())
+            for entry in KRYLOV}
+
+
+def configuration(solver):
+    """The fvSolution entries that make the configuration of `solver` out
+    of the common fvSolution (none for stock and the explicit one)."""
+    if solver == "granular-implicit":
+        return dict(IMPLICIT)
+    if solver == "granular-krylov":
+        return krylov_entries()
+    return {}
+
+
+def set_entries(case_dir, entries):
+    """entries set in the case's fvSolution by foamDictionary (which
+    expands the file's $macros as it rewrites it), then read back."""
     fv_solution = Path(case_dir) / "system/fvSolution"
-    for entry, value in IMPLICIT.items():
+    for entry, value in entries.items():
         run_tool(case_dir, "foamDictionary", str(fv_solution),
                  "-entry", entry, "-set", value)
-    for entry, value in IMPLICIT.items():
-        got = foam_value(fv_solution, entry)
+    for entry, value in entries.items():
+        got = " ".join(foam_value(fv_solution, entry).split())
         if got != value:
             raise RuntimeError(f"{fv_solution}: {entry} is {got}, "
                                f"not {value}")
@@ -250,8 +291,7 @@ def prepare(case_dir, case, solver, nx, nz, steps, ranks, interval=None,
         if who == "all" or (solver != "stock" and case == "chute"):
             (case_dir / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(REPO / "tutorials/chute" / name, case_dir / name)
-    if solver == "granular-implicit":
-        set_implicit(case_dir)
+    set_entries(case_dir, configuration(solver))
 
     dt = delta_t(nx, nz)
     params = {
@@ -267,6 +307,12 @@ def prepare(case_dir, case, solver, nx, nz, steps, ranks, interval=None,
         # no write: the write interval is longer than any run
         params.update(ADJUSTABLE_STEP, maxDeltaT=max_delta_t, nSteps=0,
                       endTime=interval, writeInterval=10 ** 9)
+        if solver == "granular-krylov":
+            tutorial = {key: foam_scalar(REPO / "tutorials/chute" / path,
+                                         key)
+                        for key, path in KRYLOV_STEP.items()}
+            params.update(maxCo=tutorial["maxCo"], maxDeltaT=min(
+                max_delta_t, tutorial["maxDeltaT"]))
     text = foam_header("benchParameters") + "// Generated by bench/generate.py\n\n"
     for key, value in params.items():
         text += f"{key:<16}{value if isinstance(value, (int, str)) else format(value, '.12g')};\n"

@@ -27,6 +27,7 @@ SOLVER_TITLE = {
     "stock": "multiphaseInterFoam",
     "granular": "granularSegregationFoam",
     "granular-implicit": "granularSegregationFoam (implicit)",
+    "granular-krylov": "granularSegregationFoam (Krylov, the chute's)",
 }
 
 
@@ -93,10 +94,13 @@ def adaptive_table(adaptive):
             "| CPU s per simulated s | speed-up (wall, CPU) |")
     lines = [head, "|---|---|---|---|---|---|---|---|---|---|---|"]
     speedup = adaptive["speedup"]
+    if "wall" in speedup:           # a results file of the implicit alone
+        speedup = {"granular-implicit": speedup}
     for row in adaptive["summary"]:
         nx, nz = row["mesh"].split("x")
-        faster = ("1" if row["solver"] == "granular"
-                  else f"{speedup['wall']:.1f}, {speedup['cpu']:.1f}")
+        mine = speedup.get(row["solver"])
+        faster = ("1" if mine is None
+                  else f"{mine['wall']:.1f}, {mine['cpu']:.1f}")
         lines.append(
             f"| {CASE_TITLE[row['case']]} | {solver_title(row)} "
             f"| {row['cells']} ({nx} × {nz}) | {row['ranks']} "
@@ -132,7 +136,11 @@ def adaptive_section(results):
         f"maxDeltaT {c['maxDeltaT']:g};`, from deltaT {c['deltaT']:g} s "
         "(growing by at most 20 % a step). Explicit: the common "
         "fvSolution; implicit: PIMPLE `"
-        + implicit_entries(results) + "`.",
+        + implicit_entries(results) + "`"
+        + ("; Krylov: `" + krylov_entries(results) + "`, "
+           f"maxCo {c['krylov']['maxCo']:g} and maxDeltaT "
+           f"{c['krylov']['maxDeltaT']:g} (the chute tutorial's)"
+           if "krylov" in c else "") + ".",
         "",
         *adaptive_table(adaptive),
         "",
@@ -147,7 +155,7 @@ def adaptive_section(results):
         "time between them; CPU from `ExecutionTime`, wall from the "
         "arrival of its log lines; median over the repetitions.",
         "- speed-up: the explicit run's time per simulated second over the "
-        "implicit one's (medians).",
+        "row's (medians).",
     ]
 
 
@@ -462,11 +470,28 @@ def harness_section():
     return lines
 
 
+def _entries(entries):
+    """fvSolution entries as they read in the file, e.g.
+    'momentumPredictor yes; viscousStress implicit; ...'."""
+    return " ".join(f"{k.split('/')[-1]} {v}" + ("" if v.endswith("}")
+                                                   else ";")
+                    for k, v in entries.items())
+
+
 def implicit_entries(results):
-    """The implicit configuration's fvSolution entries as they read in the
-    file, e.g. 'momentumPredictor yes; viscousStress implicit; ...'."""
-    implicit = results["settings"].get("implicit_fvSolution", {})
-    return " ".join(f"{k.split('/')[-1]} {v};" for k, v in implicit.items())
+    """The implicit configuration's fvSolution entries."""
+    return _entries(results["settings"].get("implicit_fvSolution", {}))
+
+
+def krylov_entries(results):
+    """The Krylov configuration's fvSolution entries (the chute
+    tutorial's coupling) in their blocks, e.g. 'PIMPLE { ... } "alpha.*"
+    { maxAlphaSubCycles 20; }'."""
+    blocks = {}
+    for k, v in results["settings"].get("krylov_fvSolution", {}).items():
+        *block, key = k.split("/")
+        blocks.setdefault(block[-1], {})[key] = v
+    return " ".join(f"{b} {{ {_entries(e)} }}" for b, e in blocks.items())
 
 
 def warnings(results):
@@ -506,11 +531,15 @@ def write(results, path):
     lines += [
         "Time per cell per time step of `granularSegregationFoam`, with "
         "the viscous stress explicit (the paper's) and implicit "
-        "(`viscousStress implicit`), against "
+        "(`viscousStress implicit`)"
+        + (" and with the chute tutorial's Krylov coupling"
+           if s.get("krylov_fvSolution") else "") + ", against "
         "stock `multiphaseInterFoam` (v1912, Debian's binary) on the same "
         "meshes, the same fixed time steps, schemes and linear solvers"
         + ("; then the time per simulated second of the granular solver, "
-           "explicit and implicit, with the time step adjusted to its CFL. "
+           + ("explicit, implicit and Krylov"
+              if s.get("krylov_fvSolution") else "explicit and implicit")
+           + ", with the time step adjusted to its CFL. "
            if adaptive else ". ") +
         "The cases, what differs between the solvers and why: "
         "[bench/README.md](bench/README.md). Raw numbers: "
@@ -553,6 +582,15 @@ def write(results, path):
         + ("; the time step it allows is in the next table."
            if adaptive else "."),
     ]
+    if s.get("krylov_fvSolution"):
+        lines += [
+            "- granularSegregationFoam (Krylov, the chute's): the chute "
+            "tutorial's coupling, fvSolution `" + krylov_entries(results)
+            + "`, at the same fixed Δt: a momentum solve, the Krylov "
+            "iterations (each an inner momentum and pressure solution) and "
+            "a final pressure corrector a step"
+            + ("; the time step it allows is in the next table."
+               if adaptive else ".")]
     section = adaptive_section(results)
     if section:
         lines += ["", *section]
