@@ -133,7 +133,8 @@ def _name(times, t):
     return names[0]
 
 
-@pytest.mark.parametrize("folder", ["measured", "etaMax", "N100", "Krylov"])
+@pytest.mark.parametrize("folder", ["measured", "etaMax", "N100", "Krylov",
+                                    "fill"])
 def test_readme_tables_are_rendered_from_drum_json(folder):
     """Each results table of the drum README is what its drum.json holds,
     rendered by granularfoam.post.drum (--readme)."""
