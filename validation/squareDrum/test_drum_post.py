@@ -383,7 +383,7 @@ def test_lobe_lives_cell_averages_the_angles_round_the_circle():
                {"life_s": 5.0, "first_deg": 350.0, "last_deg": 170.0},
                {"life_s": 5.0, "first_deg": 10.0, "last_deg": 190.0}]}
     cell = post._lives_cell(run)
-    assert cell.startswith("5.00 s (2), ")
+    assert cell.startswith("5.00 / 5.00 s (2), ")
     first, last = (float(x.strip().rstrip("°"))
                    for x in cell.split(", ")[1].split("→"))
     assert min(first, 360 - first) == pytest.approx(0, abs=1e-6)

@@ -231,3 +231,23 @@ def test_movie(serial, tmp_path):
     assert first.shape == last.shape and np.any(first != last)
     late = drumMovie.movie(serial, tmp_path / "late.gif", start=0.4)
     assert late == written[1:]
+
+
+def test_monitor_says_once_when_no_surface_is_within_reach(foam_env, serial):
+    """With surfaceRadius shorter than the surface's distance from the
+    axis (4 cm) the monitor finds no surface to fit: it writes the
+    inclination as nan and says so once in the log; the tutorial's run
+    finds one at every sample and says nothing."""
+    case = fresh_case("squareDrum", dest="squareDrum_smoke/noSurface",
+                      tutorial=True)
+    edit(case / "system" / "controlDict",
+         [(r"surfaceRadius\s+#eval\{[^}]*\};", "surfaceRadius   0.01;")])
+    foam(case, "./Allrun", "-N", str(N), "-endTime", "0.1",
+         "-writeInterval", "0.1")
+    log = (case / "log.granularSegregationFoam").read_text()
+    assert log.count("no free surface (air fraction 1/2) within "
+                     "surfaceRadius 0.01 m") == 1
+    m = post.monitor(case)
+    assert m["t"].size > 1 and np.all(np.isnan(m["angle"]))
+    assert "no free surface" not in \
+        (serial / "log.granularSegregationFoam").read_text()

@@ -723,9 +723,14 @@ def summary(case):
     # 20 s
     late = m["t"] >= (2 * PERIOD if m["t"][-1] > 2 * PERIOD
                       else m["t"][-1] - PERIOD)
-    out["surface_angle_mean_deg"] = float(np.nanmean(m["angle"][late]))
-    out["surface_angle_range_deg"] = [float(np.nanmin(m["angle"][late])),
-                                      float(np.nanmax(m["angle"][late]))]
+    # The monitor fits the surface within surfaceRadius of the axis; a
+    # surface further out (a fuller drum) has no inclination (nan)
+    fitted = np.isfinite(m["angle"][late])
+    out["surface_angle_mean_deg"] = (float(np.mean(
+        m["angle"][late][fitted])) if fitted.any() else None)
+    out["surface_angle_range_deg"] = ([
+        float(np.min(m["angle"][late][fitted])),
+        float(np.max(m["angle"][late][fitted]))] if fitted.any() else None)
     out["peak_speed_mean"] = float(np.mean(m["peak"][late]))
     out["peak_speed_max"] = float(np.max(m["peak"][late]))
     sample_rings(case)
@@ -753,14 +758,18 @@ def summary(case):
         np.mean(body_shear_rate(case, names)))
     # The flowing depth on the line through the axis normal to the surface
     # (drumSidewall.state; the paper: at most about 1.6 cm)
+    # (drumSidewall.state; the paper: at most about 1.6 cm), which needs
+    # the monitor's inclination at every written time
     from .drumSidewall import measure
-    rows = measure(case, float(names[0]))[0]
-    depths = [r["flowing_depth"] for r in rows]
-    out["flowing_depth_last_revolution_m"] = [float(np.mean(depths)),
-                                              float(np.max(depths))]
-    out["depth_I_above_I1_last_revolution_m"] = float(
-        np.mean([r["depth_I_above_I1"] for r in rows]))
-    out["surface_rise_last_revolution"] = surface_rise(case, rows, names)
+    if np.all(np.isfinite(np.interp([float(n) for n in names], m["t"],
+                                    m["angle"]))):
+        rows = measure(case, float(names[0]))[0]
+        depths = [r["flowing_depth"] for r in rows]
+        out["flowing_depth_last_revolution_m"] = [float(np.mean(depths)),
+                                                  float(np.max(depths))]
+        out["depth_I_above_I1_last_revolution_m"] = float(
+            np.mean([r["depth_I_above_I1"] for r in rows]))
+        out["surface_rise_last_revolution"] = surface_rise(case, rows, names)
     out["quarter_turn_change_last_revolution"] = quarter_turn_changes(
         case, names)
     angles = [lobe_angles(*grid(case, n, ["alpha.small", "alpha.large",
@@ -1050,7 +1059,9 @@ def results_table(numbers):
          "revolution), mean (range)", lambda r:
          f"{r['surface_angle_mean_deg']:.1f}° "
          f"({r['surface_angle_range_deg'][0]:.1f}–"
-         f"{r['surface_angle_range_deg'][1]:.1f}°)"),
+         f"{r['surface_angle_range_deg'][1]:.1f}°)"
+         if r.get("surface_angle_mean_deg") is not None else
+         "– (no surface within the monitor's surfaceRadius)"),
         ("peak speed relative to the drum, mean / max [m/s]", lambda r:
          f"{r['peak_speed_mean']:.3f} / {r['peak_speed_max']:.3f}"),
         ("median shear rate in the grains (the body's creep), last "
@@ -1078,7 +1089,8 @@ def results_table(numbers):
          "last revolution; the angle between neighbours", _lobes_cell),
         ("the lobes' life in the body (`lobe_lives`: from forming to "
          "leaving, the lobes seen to do both in the last revolution), "
-         "median [s] (lobes); lab angles where they form and leave, mean",
+         "median / longest [s] (lobes); lab angles where they form and "
+         "leave, mean",
          _lives_cell),
         ("small-rich lobes on r = 0.6 L, median over the last revolution",
          lambda r: g(r["lobes_median"], "{:g}")),
@@ -1128,9 +1140,9 @@ def _lives_cell(r):
     def mean_deg(key):
         z = np.mean([np.exp(1j * math.radians(x[key])) for x in lives])
         return math.degrees(np.angle(z)) % 360
-    return "{:.2f} s ({}), {:.0f}° → {:.0f}°".format(
-        r["lobe_life_s_median"], len(lives), mean_deg("first_deg"),
-        mean_deg("last_deg"))
+    return "{:.2f} / {:.2f} s ({}), {:.0f}° → {:.0f}°".format(
+        r["lobe_life_s_median"], max(x["life_s"] for x in lives),
+        len(lives), mean_deg("first_deg"), mean_deg("last_deg"))
 
 
 def _drift_cell(r):
@@ -1163,7 +1175,8 @@ def paper_table(numbers):
         ("J(80 s)/J(40 s) − 1, the change over the last four revolutions",
          PAPER["J_change"], change),
         ("surface inclination, mean after 20 s", PAPER["surface_angle"],
-         lambda r: f"{r['surface_angle_mean_deg']:.1f}°"),
+         lambda r: "–" if r.get("surface_angle_mean_deg") is None else
+         f"{r['surface_angle_mean_deg']:.1f}°"),
         ("flowing depth on the mid-line, largest over the last revolution",
          PAPER["flowing_depth"], lambda r: "–"
          if "flowing_depth_last_revolution_m" not in r else

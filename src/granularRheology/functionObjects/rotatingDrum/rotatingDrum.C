@@ -149,6 +149,17 @@ Foam::scalar Foam::functionObjects::rotatingDrum::surfaceAngle() const
     reduce(sxx, sumOp<symmTensor>());
     if (n < 2)
     {
+        if (!noSurfaceReported_)
+        {
+            WarningInFunction
+                << "function object " << name() << ": no free surface "
+                << "(air fraction 1/2) within surfaceRadius "
+                << surfaceRadius_ << " m of the drum's axis at t = "
+                << time_.timeName() << "; the inclination is written as "
+                << "nan until there is one (raise surfaceRadius to the "
+                << "surface's distance from the axis)" << nl << endl;
+            noSurfaceReported_ = true;
+        }
         return GREAT;
     }
 
@@ -208,6 +219,7 @@ Foam::functionObjects::rotatingDrum::rotatingDrum
     airName_(),
     period_(0),
     surfaceRadius_(0),
+    noSurfaceReported_(false),
     firstTime_(runTime.value()),
     times_(),
     samples_()
