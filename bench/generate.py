@@ -20,6 +20,7 @@ blockMesh, setFields and, for MPI runs, decomposePar.  Nothing here is
 edited by hand after generation.
 """
 
+import functools
 import math
 import os
 import shutil
@@ -239,12 +240,18 @@ def count_cells(case_dir):
     raise RuntimeError(f"no nCells in {case_dir}/constant/polyMesh/owner")
 
 
+@functools.lru_cache(maxsize=None)
+def _krylov_entries():
+    """The chute tutorial's entries KRYLOV, read once a run."""
+    path = REPO / "tutorials/chute/system/fvSolution"
+    return tuple((entry, " ".join(foam_value(path, entry).split()))
+                 for entry in KRYLOV)
+
+
 def krylov_entries():
     """The chute tutorial's entries KRYLOV, as foamDictionary reads them
     (a dictionary on one line)."""
-    path = REPO / "tutorials/chute/system/fvSolution"
-    return {entry: " ".join(foam_value(path, entry).split())
-            for entry in KRYLOV}
+    return dict(_krylov_entries())
 
 
 def configuration(solver):

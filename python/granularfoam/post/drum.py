@@ -156,8 +156,9 @@ def label(case):
     walls = sidewall(case)
     if walls:
         key += f"_walls{walls['W']:g}m_muW{walls['muW']:g}"
-    if abs(fill(case) - FILL) > 1e-9:
-        key += f"_fill{fill(case) * 100:.0f}"
+    filled = fill(case)
+    if abs(filled - FILL) > 1e-9:
+        key += f"_fill{filled * 100:.0f}"
     return key
 
 
@@ -481,6 +482,12 @@ def lobe_period(case, names):
     return 2 * math.pi / abs(rate) if rate else math.inf, rate, rates
 
 
+def _drum_move(a0, t0, a1, t1):
+    """The move in the drum's frame (a lab angle minus Omega t) from the
+    lab angle a0 at t0 to a1 at t1 [rad], wrapped to (-pi, pi]."""
+    return np.angle(np.exp(1j * ((a1 - OMEGA * t1) - (a0 - OMEGA * t0))))
+
+
 def lobe_tracks(angles, times, match=LOBE_MATCH):
     """The lobes followed from write to write: lobe angles (lobe_angles,
     one array per written time of `times`) in the drum's frame (the lab
@@ -496,9 +503,8 @@ def lobe_tracks(angles, times, match=LOBE_MATCH):
         if k:
             a0, t0 = np.asarray(angles[k - 1], dtype=float), times[k - 1]
             pairs = sorted(
-                (abs(g), i, j) for i, d in enumerate(a - OMEGA * t)
-                for j, g in enumerate(np.angle(np.exp(
-                    1j * (d - (a0 - OMEGA * t0))))))
+                (abs(g), i, j) for i, x in enumerate(a)
+                for j, g in enumerate(_drum_move(a0, t0, x, t)))
             used = set()
             for g, i, j in pairs:
                 if g <= match and i not in joined and j not in used:
@@ -520,8 +526,7 @@ def lobe_drift(angles, times, match=LOBE_MATCH):
     moves in the drum's frame of the lobes followed by lobe_tracks over
     their intervals, and the number of moves.  Negative: clockwise, as the
     drum turns, so lobes that turn faster than the drum drift negative."""
-    moves = [(np.angle(np.exp(1j * ((a1 - OMEGA * t1) - (a0 - OMEGA * t0))))
-              / (t1 - t0))
+    moves = [_drum_move(a0, t0, a1, t1) / (t1 - t0)
              for track in lobe_tracks(angles, times, match)
              for (t0, a0), (t1, a1) in zip(track[:-1], track[1:])]
     return (float(np.median(moves)) if moves else None), len(moves)
