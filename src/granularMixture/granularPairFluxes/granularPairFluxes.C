@@ -121,7 +121,7 @@ void Foam::granularPairFluxes::relativeFluxes
 }
 
 
-Foam::tmp<Foam::scalarField> Foam::granularPairFluxes::add
+void Foam::granularPairFluxes::add
 (
     const PtrList<volScalarField>& alphas,
     const List<labelPair>& pairs,
@@ -154,7 +154,6 @@ Foam::tmp<Foam::scalarField> Foam::granularPairFluxes::add
             (*relPhis)[j] -= F;
         }
     }
-    tmp<scalarField> rate(segregationRate(alphas, pairs, phirs));
 
     // (2.15): D^i = D_ij (phi^j grad phi^i - phi^i grad phi^j), a flux -D^i
     forAll(diffusion_, k)
@@ -181,8 +180,6 @@ Foam::tmp<Foam::scalarField> Foam::granularPairFluxes::add
             (*relPhis)[j] -= Fd;
         }
     }
-
-    return rate;
 }
 
 

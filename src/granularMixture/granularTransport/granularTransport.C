@@ -16,54 +16,197 @@
 #include "upwind.H"
 #include "fvcFlux.H"
 #include "fvcSurfaceIntegrate.H"
+#include "profiling.H"
+#include "syncTools.H"
 
 // * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * * //
 
-Foam::tmp<Foam::scalarField> Foam::granularTransport::boundsExcess
+Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
 (
     const volScalarField& alpha,
-    const surfaceScalarField& alphaPhi
+    const surfaceScalarField& alphaPhi,
+    const surfaceScalarField* alphaPhi2,
+    scalarField* outgoing,
+    scalarField* incoming
 ) const
 {
     // The update of MULES::explicitSolve, without changing the field
-    scalarField psi(alpha.oldTime().primitiveField());
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const scalar deltaT = mesh_.time().deltaTValue();
+    const scalarField& V = mesh_.V().field();
+
+    scalarField outflow(mesh_.nCells(), Zero);
+    if (outgoing)
+    {
+        *outgoing = Zero;
+        *incoming = Zero;
+    }
+    forAll(nei, facei)
+    {
+        const scalar f = alphaPhi[facei];
+        const scalar f2 = alphaPhi2 ? (*alphaPhi2)[facei] : 0;
+        outflow[own[facei]] += f + f2;
+        outflow[nei[facei]] -= f + f2;
+        if (outgoing)
+        {
+            const label from = f > 0 ? own[facei] : nei[facei];
+            const label to = f > 0 ? nei[facei] : own[facei];
+            (*outgoing)[from] += mag(f);
+            (*incoming)[to] += mag(f);
+        }
+    }
+    forAll(mesh_.boundary(), patchi)
+    {
+        const labelUList& faceCells = mesh_.boundary()[patchi].faceCells();
+        const fvsPatchScalarField& pf = alphaPhi.boundaryField()[patchi];
+        forAll(faceCells, facei)
+        {
+            const scalar f = pf[facei];
+            const scalar f2 =
+                alphaPhi2 ? alphaPhi2->boundaryField()[patchi][facei] : 0;
+            outflow[faceCells[facei]] += f + f2;
+            if (outgoing)
+            {
+                (f > 0 ? *outgoing : *incoming)[faceCells[facei]] += mag(f);
+            }
+        }
+    }
+    if (outgoing)
+    {
+        *outgoing *= deltaT/V;
+        *incoming *= deltaT/V;
+    }
+
+    auto tpsi = tmp<scalarField>::New(alpha.oldTime().primitiveField());
+    scalarField& psi = tpsi.ref();
     if (mesh_.moving())
     {
         psi *= mesh_.Vsc0()().field()/mesh_.Vsc()().field();
     }
-    psi -= mesh_.time().deltaTValue()
-       *fvc::surfaceIntegrate(alphaPhi)().primitiveField();
+    psi -= deltaT*(outflow/V);
+    return tpsi;
+}
 
+
+Foam::tmp<Foam::scalarField> Foam::granularTransport::boundsExcess
+(
+    const scalarField& psi
+)
+{
     return max(max(-psi, psi - 1), scalar(0));
 }
 
 
-bool Foam::granularTransport::outOfBounds
+Foam::label Foam::granularTransport::repairBounds
 (
-    const PtrList<surfaceScalarField>& corrections,
+    PtrList<surfaceScalarField>& corrections,
     const PtrList<surfaceScalarField>& upwindPhis,
     const PtrList<scalarField>& upwindExcess,
-    const scalar tol
+    const bool remove
 ) const
 {
-    bool out = false;
-    forAll(phases_.alphas(), i)
+    const scalar tol = 1e-12;
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const label nInternal = mesh_.nInternalFaces();
+
+    // The factor of each face's corrections, of every phase
+    scalarField lambda(mesh_.nFaces(), 1.0);
+    label nOut = 0;
+
+    scalarField outgoing(mesh_.nCells());
+    scalarField incoming(mesh_.nCells());
+    forAll(corrections, i)
     {
-        const scalarField excess
+        const scalarField psi
         (
-            boundsExcess(phases_[i], corrections[i] + upwindPhis[i])
-          - upwindExcess[i]
+            explicitUpdate
+            (
+                phases_[i], corrections[i], &upwindPhis[i], &outgoing,
+                &incoming
+            )
         );
-        out = out || max(excess) > tol;
+        const scalarField excess(boundsExcess(psi) - upwindExcess[i]);
+
+        // The factor of a cell's outgoing corrections (below 0) or of its
+        // incoming ones (above 1) that takes away the excess
+        scalarField lambdaOut(mesh_.nCells(), 1.0);
+        scalarField lambdaIn(mesh_.nCells(), 1.0);
+        forAll(excess, celli)
+        {
+            if (excess[celli] > tol)
+            {
+                ++nOut;
+                scalarField& l = psi[celli] < 0 ? lambdaOut : lambdaIn;
+                const scalar part =
+                    psi[celli] < 0 ? outgoing[celli] : incoming[celli];
+                l[celli] =
+                    remove
+                  ? 0
+                  : max(1 - excess[celli]/max(part, VSMALL), scalar(0));
+            }
+        }
+
+        const scalarField& corr = corrections[i].primitiveField();
+        forAll(nei, facei)
+        {
+            const label from = corr[facei] > 0 ? own[facei] : nei[facei];
+            const label to = corr[facei] > 0 ? nei[facei] : own[facei];
+            lambda[facei] =
+                min(lambda[facei], min(lambdaOut[from], lambdaIn[to]));
+        }
+        forAll(mesh_.boundary(), patchi)
+        {
+            const fvPatch& patch = mesh_.boundary()[patchi];
+            const fvsPatchScalarField& pcorr =
+                corrections[i].boundaryField()[patchi];
+            forAll(pcorr, facei)
+            {
+                const label celli = patch.faceCells()[facei];
+                scalar& l = lambda[patch.start() + facei];
+                l = min
+                (
+                    l,
+                    pcorr[facei] > 0 ? lambdaOut[celli] : lambdaIn[celli]
+                );
+            }
+        }
     }
-    return returnReduce(out, orOp<bool>());
+    reduce(nOut, sumOp<label>());
+    if (nOut == 0)
+    {
+        return 0;
+    }
+
+    // Both sides of a processor or cyclic face take the smaller factor
+    const label nBoundary = mesh_.nBoundaryFaces();
+    scalarField lambdaB(SubField<scalar>(lambda, nBoundary, nInternal));
+    syncTools::syncBoundaryFaceList(mesh_, lambdaB, minEqOp<scalar>());
+    SubField<scalar>(lambda, nBoundary, nInternal) = lambdaB;
+
+    for (surfaceScalarField& corr : corrections)
+    {
+        corr.primitiveFieldRef() *= SubField<scalar>(lambda, nInternal);
+        forAll(mesh_.boundary(), patchi)
+        {
+            const fvPatch& patch = mesh_.boundary()[patchi];
+            fvsPatchScalarField& pcorr = corr.boundaryFieldRef()[patchi];
+            forAll(pcorr, facei)
+            {
+                pcorr[facei] *= lambda[patch.start() + facei];
+            }
+        }
+    }
+    return nOut;
 }
 
 
 void Foam::granularTransport::fluxes
 (
     PtrList<surfaceScalarField>& alphaPhis,
-    PtrList<surfaceScalarField>& relPhis
+    PtrList<surfaceScalarField>& relPhis,
+    const bool rate
 )
 {
     const PtrList<volScalarField>& alphas = phases_.alphas();
@@ -99,8 +242,12 @@ void Foam::granularTransport::fluxes
     (
         alphas, gravity_.unit(), air_, phi_, pairs, phirs
     );
-    segregationRate_ =
-        pairFluxes_.add(alphas, pairs, phirs, alphaPhis, &relPhis);
+    pairFluxes_.add(alphas, pairs, phirs, alphaPhis, &relPhis);
+    if (rate)
+    {
+        segregationRate_ =
+            pairFluxes_.segregationRate(alphas, pairs, phirs);
+    }
 }
 
 
@@ -112,56 +259,55 @@ void Foam::granularTransport::limit
 {
     PtrList<volScalarField>& alphas = phases_.alphas();
 
-    // Bound each phase, then make the corrections sum to zero.  limitSum
-    // scales corrections of one sign only, which can undo a phase's bound
-    // where several phases meet (seen on moving meshes): while the update
-    // would leave [0, 1] by more than 1e-12 beyond the upwind update, the
-    // pair is repeated, each pass shrinking the corrections towards the
-    // bounded upwind fluxes.  One pass, multiphaseInterFoam's, is the rule.
-    // The upwind update itself leaves [0, 1] by the continuity error of
-    // phi (about 1e-9 in the chute, within the pressure tolerance): no
-    // limiting can remove that part, and the passes would repeat in vain.
-    const dictionary& dict = mesh_.solverDict("alpha");
-    const label nPasses = dict.getOrDefault<label>("nLimitSumPasses", 10);
-    if (nPasses < 1)
+    // multiphaseInterFoam's pass: each phase bounded, then the corrections
+    // made to sum to zero
+    forAll(alphas, i)
     {
-        granularInput::invalid(dict, "nLimitSumPasses", nPasses, ">= 1");
+        MULES::limit
+        (
+            1.0/mesh_.time().deltaTValue(),
+            geometricOneField(),
+            alphas[i],
+            phi_,
+            alphaPhis[i],
+            zeroField(),
+            zeroField(),
+            oneField(),
+            zeroField(),
+            true
+        );
     }
+    MULES::limitSum(alphaPhis);
 
+    // limitSum scales corrections of one sign only, which can undo a
+    // phase's bound where several phases meet (on the chute, a cell or two
+    // at the surface near the inlet in every sub-cycle; on moving meshes).
+    // Where the update would leave [0, 1] by more than 1e-12 beyond the
+    // upwind update, the corrections of every phase on the faces that take
+    // the cell out (its outgoing ones below 0, its incoming ones above 1)
+    // are scaled down by the factor that brings it back, so that they still
+    // sum to zero; a neighbour that this unbounds is seen to in the next
+    // round.  From the tenth round on, those corrections are removed, which
+    // ends the repair (a cell without corrections has the upwind update).
+    // The upwind update itself leaves [0, 1] by the continuity error of phi
+    // (about 1e-9 in the chute, within the pressure tolerance), which no
+    // limiting can remove: hence the bound relative to it.
     PtrList<scalarField> upwindExcess(alphas.size());
     forAll(alphas, i)
     {
-        upwindExcess.set(i, boundsExcess(alphas[i], upwindPhis[i]));
+        upwindExcess.set
+        (
+            i,
+            boundsExcess(explicitUpdate(alphas[i], upwindPhis[i]))
+        );
     }
-    for (label pass = 0; pass < nPasses; ++pass)
-    {
-        forAll(alphas, i)
-        {
-            if (pass > 0)
-            {
-                alphaPhis[i] += upwindPhis[i];
-            }
-            MULES::limit
-            (
-                1.0/mesh_.time().deltaTValue(),
-                geometricOneField(),
-                alphas[i],
-                phi_,
-                alphaPhis[i],
-                zeroField(),
-                zeroField(),
-                oneField(),
-                zeroField(),
-                true
-            );
-        }
-        MULES::limitSum(alphaPhis);
-
-        if (!outOfBounds(alphaPhis, upwindPhis, upwindExcess, 1e-12))
-        {
-            break;
-        }
-    }
+    for
+    (
+        label round = 0;
+        repairBounds(alphaPhis, upwindPhis, upwindExcess, round >= 10);
+        ++round
+    )
+    {}
 }
 
 
@@ -199,13 +345,15 @@ void Foam::granularTransport::update
 }
 
 
-void Foam::granularTransport::step()
+void Foam::granularTransport::step(const bool last)
 {
     const label nPhases = phases_.size();
 
     PtrList<surfaceScalarField> alphaPhis(nPhases);
     PtrList<surfaceScalarField> relPhis(nPhases);
-    fluxes(alphaPhis, relPhis);
+    addProfiling(fluxesSection, "granular::phases::fluxes");
+    fluxes(alphaPhis, relPhis, last);
+    endProfiling(fluxesSection);
 
     PtrList<surfaceScalarField> upwindPhis(nPhases);
     forAll(upwindPhis, i)
@@ -219,7 +367,9 @@ void Foam::granularTransport::step()
             )
         );
     }
+    addProfiling(limitSection, "granular::phases::limit");
     limit(alphaPhis, upwindPhis);
+    endProfiling(limitSection);
 
     pairwiseFluxSum_.value() = max
     (
@@ -230,6 +380,7 @@ void Foam::granularTransport::step()
         limitedFluxSum_.value(), granularPairFluxes::fluxSum(alphaPhis)
     );
 
+    addProfiling(updateSection, "granular::phases::update");
     update(alphaPhis, upwindPhis);
 }
 
@@ -362,7 +513,7 @@ void Foam::granularTransport::solve(const label nSub)
     limitedFluxSum_.value() = 0;
     if (nSub <= 1)
     {
-        step();
+        step(true);
         return;
     }
 
@@ -400,7 +551,7 @@ void Foam::granularTransport::solve(const label nSub)
         !(++alphaSubCycle).end();
     )
     {
-        step();
+        step(alphaSubCycle.index() == nSub);
         rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
         forAll(alphaPhiSums, i)
         {
