@@ -7,11 +7,14 @@ case, mesh and rank count the same number of fixed time steps, repeated
 machine spreads over all configurations); then the time per simulated
 second: the granular solver, explicit, implicit and Krylov, serial, on the
 chute's 155 x 16 mesh over --interval simulated seconds with the time step
-adjusted to the CFL (4.11).  Writes bench/results.json and BENCHMARKS.md
-(report.py).
+adjusted to the CFL (4.11); then whole runs of the chute tutorial (155 x 40,
+from rest to --whole-end-time) with the reference coupling and with the
+tutorial's own, side by side on two cores (bench/harness's whole_chute).
+Writes bench/results.json and BENCHMARKS.md (report.py).
 """
 
 import argparse
+import concurrent.futures
 import datetime
 import hashlib
 import json
@@ -28,6 +31,7 @@ import time
 from pathlib import Path
 
 import generate
+import harness
 import report
 
 BENCH = generate.BENCH
@@ -40,12 +44,23 @@ RANKS = (1, 2)
 MESHES = ("155x16", "400x40")
 STEPS = 500
 INTERVAL = 0.2
-QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1, "interval": 0.02}
+QUICK = {"meshes": ("155x16",), "steps": 20, "reps": 1, "interval": 0.02,
+         "whole_end_time": 1}
 # The time per simulated second: case, mesh, solver configurations (serial)
 ADAPTIVE = {"case": "chute", "mesh": (155, 16),
             "solvers": ("granular", "granular-implicit",
                         "granular-krylov")}
 MPIRUN = ("mpirun", "--oversubscribe", "--bind-to", "none")
+# Whole runs of the chute tutorial, serial, side by side: the reference
+# (20 PISO correctors, the transport in the momentum step, maxDeltaT 1e-3)
+# and the tutorial as its files say
+WHOLE_END_TIME = 25
+WHOLE = {
+    "reference": {"coupling": "PISO-20", "sub_cycles": 0,
+                  "max_delta_t": 1e-3},
+    "tutorial": {"coupling": harness.TUTORIAL_NAME, "sub_cycles": None,
+                 "max_delta_t": None},
+}
 
 EXECUTION = re.compile(
     r"^ExecutionTime = ([-+.0-9eE]+) s\s+ClockTime = ([-+.0-9eE]+) s",
@@ -92,6 +107,10 @@ def parse_args(argv):
                         metavar="SECONDS",
                         help="maxDeltaT of the time per simulated second "
                              "(default 1: no cap; the tutorial's is 1e-3)")
+    parser.add_argument("--whole-end-time", type=float, metavar="SECONDS",
+                        help="end time of the whole chute runs (default "
+                             f"{WHOLE_END_TIME}; {QUICK['whole_end_time']} "
+                             "with --quick; 0 leaves them out)")
     parser.add_argument("--quick", action="store_true",
                         help="develop the harness: the small mesh, "
                              f"{QUICK['steps']} steps, 1 repetition, "
@@ -108,8 +127,13 @@ def parse_args(argv):
         args.k0 = max(1, args.steps // 10)
     if args.interval is None:
         args.interval = QUICK["interval"] if args.quick else INTERVAL
-    if args.interval < 0 or args.max_delta_t <= 0:
-        parser.error("need --interval >= 0 and --max-delta-t > 0")
+    if args.whole_end_time is None:
+        args.whole_end_time = (QUICK["whole_end_time"] if args.quick
+                               else WHOLE_END_TIME)
+    if (args.interval < 0 or args.max_delta_t <= 0
+            or args.whole_end_time < 0):
+        parser.error("need --interval >= 0, --max-delta-t > 0 and "
+                     "--whole-end-time >= 0")
     if args.reps < 1 or args.steps < 2 or not 1 <= args.k0 < args.steps:
         parser.error("need reps >= 1 and 1 <= k0 < steps")
     meshes = []
@@ -382,6 +406,32 @@ def summarise_adaptive(configs, runs):
     return rows, speedup
 
 
+def run_whole(end_time):
+    """The whole chute runs of WHOLE, side by side (one process each), and
+    the reference's CPU time over the tutorial's."""
+    with concurrent.futures.ProcessPoolExecutor(len(WHOLE)) as pool:
+        futures = {name: pool.submit(harness.whole_chute, c["coupling"],
+                                     end_time, c["sub_cycles"],
+                                     c["max_delta_t"], [])
+                   for name, c in WHOLE.items()}
+        runs = {name: f.result() for name, f in futures.items()}
+    for name, entry in runs.items():
+        entry["configuration"] = name
+        cpu = entry.get("cpu_seconds")
+        entry["cpu_per_simulated_s"] = cpu / end_time if cpu else None
+        entry["ms_per_step"] = (1000 * cpu / entry["steps"]
+                                if cpu and entry["steps"] else None)
+        print(f"bench/run: whole chute, {name}: {entry['status']}, "
+              f"{entry['steps']} steps, {cpu} CPU s", flush=True)
+    ref, tut = runs["reference"], runs["tutorial"]
+    speedup = (ref["cpu_seconds"] / tut["cpu_seconds"]
+               if ref.get("cpu_seconds") and tut.get("cpu_seconds")
+               else None)
+    return {"case": "chute", "mesh": "155x40", "ranks": 1,
+            "end_time": end_time, "side_by_side": True,
+            "settings": WHOLE, "runs": runs, "speedup": speedup}
+
+
 def summarise(configs, runs, ranks_used):
     """Min and median over the repetitions, the ratio to stock and the
     parallel efficiency, one row per configuration and rank count."""
@@ -516,6 +566,10 @@ def main(argv):
                 json.dumps({"runs": runs, "adaptive_runs": adaptive_runs},
                            indent=1))
 
+    whole = None
+    if args.whole_end_time > 0:
+        whole = run_whole(args.whole_end_time)
+
     for config in configs + adaptive:
         config["dir"] = str(config["dir"].relative_to(REPO))
     results["configs"] = configs
@@ -542,6 +596,7 @@ def main(argv):
             "summary": rows,
             "speedup": speedup,
         }
+    results["whole"] = whole
     RESULTS.write_text(json.dumps(results, indent=1) + "\n")
     report.write(results, MARKDOWN)
     print(f"bench/run: wrote {RESULTS.relative_to(REPO)} and "

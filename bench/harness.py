@@ -76,6 +76,8 @@ OUTLET_COLUMNS = 10
 # The reference: PISO with 200 correctors, every p_rgh solution to 1e-13,
 # the coupling named REFERENCE_NAME
 REFERENCE_NAME = "reference"
+# The case's own coupling, as its fvSolution gives it
+TUTORIAL_NAME = "tutorial"
 REFERENCE = {
     "PIMPLE.pressureCoupling": "PISO",
     "PIMPLE.nCorrectors": 200,
@@ -329,7 +331,10 @@ def coupling_settings(name):
     Krylov-BFBt-10 (preconditioner BFBt, PISO or CahouetChabard, at most
     10 iterations; a suffix -tol1e-4 sets the tolerance, -inner1e-3
     innerRelTol); reference-N is the reference with N correctors, to
-    measure how far the reference is from its own converged step."""
+    measure how far the reference is from its own converged step;
+    tutorial: none, the case's own."""
+    if name == TUTORIAL_NAME:
+        return {}
     if name == REFERENCE_NAME:
         return dict(REFERENCE)
     m = re.fullmatch(r"reference-(\d+)", name)
@@ -352,8 +357,8 @@ def coupling_settings(name):
     if not m or int(m.group(2)) < 1:
         raise ValueError(f"coupling '{name}' is not PISO-N, SIMPLEC-N "
                          "(N >= 1), Krylov-BFBt-N, Krylov-PISO-N, "
-                         "Krylov-CahouetChabard-N, reference or "
-                         "reference-N")
+                         "Krylov-CahouetChabard-N, reference, "
+                         "reference-N or tutorial")
     return {"PIMPLE.pressureCoupling": m.group(1),
             "PIMPLE.nCorrectors": int(m.group(2))}
 

@@ -159,6 +159,64 @@ def adaptive_section(results):
     ]
 
 
+def whole_section(results):
+    """The whole chute runs of bench/run: the reference coupling and the
+    tutorial's, side by side."""
+    whole = results.get("whole")
+    if not whole:
+        return []
+    runs = whole["runs"]
+    lines = [
+        "## Whole runs: the reference against the tutorial",
+        "",
+        f"    {results['command']}",
+        "",
+        "(the same command as the tables above, after them; "
+        "`--whole-end-time 0` leaves this one out). The chute tutorial "
+        f"({whole['mesh'].replace('x', ' × ')}) from rest to "
+        f"{whole['end_time']:g} s, serial, the two runs side by side on "
+        "the two cores: the reference, "
+        f"{whole['settings']['reference']['coupling']} with the phases' "
+        "transport in the momentum step and maxDeltaT "
+        f"{whole['settings']['reference']['max_delta_t']:g} s, and the "
+        "tutorial as its files say (`tutorials/chute/system`). The outflow "
+        "at the end against Bagnold (5.4), Gray & Chugunov (5.8) and the "
+        "depth-averaged φ^s of (5.10) (0.6744), and its change over the "
+        "last written second (`granularfoam.post.chute`; `bench/harness "
+        "chute` runs other couplings the same way).",
+        "",
+        "| run | steps | CPU [s] | CPU s per simulated s | ms per step | "
+        "pressure solutions / step | u vs (5.4) | φ^s vs (5.8) | φ̄^s | "
+        "u change, last second | φ^s change, last second | status |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    g = dash_or
+    for name in ("reference", "tutorial"):
+        r = runs[name]
+        ok = r["status"] == "ok"
+        cells = [name, g(r["steps"], "{}"), g(r["cpu_seconds"], "{:.0f}"),
+                 g(r["cpu_per_simulated_s"], "{:.3g}"),
+                 g(r["ms_per_step"], "{:.3g}"),
+                 g(r["pressure_solutions_per_step"], "{:.1f}")]
+        for key, fmt in (("outlet_l2_u_bagnold", "{:.3%}"),
+                         ("outlet_l2_phis_gray_chugunov", "{:.3%}"),
+                         ("outlet_depth_averaged_phis", "{:.4f}"),
+                         ("outlet_change_last_interval_u", "{:.2g}"),
+                         ("outlet_change_last_interval_phis", "{:.2g}")):
+            cells.append(g(r.get(key), fmt) if ok else "")
+        # one line of the table, however long the reason
+        status = " ".join(str(r["status"]).replace("|", "/").split())
+        cells.append(status if len(status) <= 80 else status[:77] + "...")
+        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+    speedup = whole.get("speedup")
+    lines += [
+        "",
+        "Speed-up of the tutorial over the reference (CPU): "
+        + (f"**{speedup:.2f}**." if speedup else "—."),
+    ]
+    return lines
+
+
 def tutorials_section():
     """The tutorials' run times, measured by hand with the commands given
     (bench/tutorials.json): runs of minutes to hours that bench/run does
@@ -591,9 +649,9 @@ def write(results, path):
             "a final pressure corrector a step"
             + ("; the time step it allows is in the next table."
                if adaptive else ".")]
-    section = adaptive_section(results)
-    if section:
-        lines += ["", *section]
+    for section in (adaptive_section(results), whole_section(results)):
+        if section:
+            lines += ["", *section]
     for section in (harness_section(), spectra_section(),
                     whole_chute_section(), profile_section(),
                     whole_drum_section(),

@@ -63,3 +63,76 @@ def test_report_gives_every_configuration_its_speed_up():
     old = report.adaptive_table({"summary": rows[:2],
                                  "speedup": speedup["granular-implicit"]})
     assert old[-1].endswith("| 4.0, 4.0 |")
+
+
+def _whole(tutorial_status="ok"):
+    run = {"steps": 25000, "cpu_seconds": 850.0, "cpu_per_simulated_s": 34.0,
+           "ms_per_step": 34.0, "pressure_solutions_per_step": 20.0,
+           "status": "ok", "outlet_l2_u_bagnold": 0.00164,
+           "outlet_l2_phis_gray_chugunov": 0.00559,
+           "outlet_depth_averaged_phis": 0.6741,
+           "outlet_change_last_interval_u": 4.8e-4,
+           "outlet_change_last_interval_phis": 1e-3}
+    tutorial = dict(run, steps=1900, cpu_seconds=170.0,
+                    cpu_per_simulated_s=6.8, ms_per_step=89.5,
+                    pressure_solutions_per_step=9.0,
+                    outlet_depth_averaged_phis=0.6740,
+                    status=tutorial_status)
+    return {"command": "bench/run", "whole": {
+        "case": "chute", "mesh": "155x40", "ranks": 1, "end_time": 25,
+        "side_by_side": True,
+        "settings": {"reference": {"coupling": "PISO-20", "sub_cycles": 0,
+                                   "max_delta_t": 1e-3},
+                     "tutorial": {"coupling": "tutorial",
+                                  "sub_cycles": None, "max_delta_t": None}},
+        "runs": {"reference": run, "tutorial": tutorial},
+        "speedup": 850.0 / 170.0}}
+
+
+def test_report_shows_both_whole_runs_and_the_speed_up():
+    """The whole-run section has the reference's and the tutorial's rows,
+    each with its own cost and outflow, and the speed-up; a run that did
+    not end well shows its status and no outflow; no whole runs, no
+    section."""
+    lines = report.whole_section(_whole())
+    rows = [x for x in lines if x.startswith("| reference")
+            or x.startswith("| tutorial")]
+    assert len(rows) == 2
+    assert "| 25000 | 850 | 34 | 34 | 20.0 | 0.164% | 0.559% | 0.6741 |" \
+        in rows[0]
+    assert "| 1900 | 170 | 6.8 | 89.5 | 9.0 | 0.164% | 0.559% | 0.6740 |" \
+        in rows[1]
+    assert lines[-1] == ("Speed-up of the tutorial over the reference "
+                         "(CPU): **5.00**.")
+    failed = report.whole_section(_whole("failed (exit 1) at t = 3 s"))
+    row = next(x for x in failed if x.startswith("| tutorial"))
+    assert row.endswith("|  |  |  |  |  | failed (exit 1) at t = 3 s |")
+    assert report.whole_section({"whole": None}) == []
+
+
+def test_whole_runs_are_the_reference_and_the_tutorial_unchanged():
+    """bench/run's whole runs: the reference is 20 PISO correctors with the
+    transport in the momentum step at 1e-3 s; the tutorial's run changes
+    nothing of the tutorial's fvSolution."""
+    import bench
+    import harness
+    assert bench.WHOLE["reference"] == {"coupling": "PISO-20",
+                                        "sub_cycles": 0,
+                                        "max_delta_t": 1e-3}
+    tutorial = bench.WHOLE["tutorial"]
+    assert harness.coupling_settings(tutorial["coupling"]) == {}
+    assert tutorial["sub_cycles"] is None
+    assert tutorial["max_delta_t"] is None
+    assert harness.coupling_settings("PISO-20") == {
+        "PIMPLE.pressureCoupling": "PISO", "PIMPLE.nCorrectors": 20}
+
+
+def test_whole_run_status_keeps_to_one_table_row():
+    """A status of several lines (an assertion's message) renders within
+    its row."""
+    results = _whole("ran; no outflow to measure: no phi^s = 1/2: [-- --\n"
+                     " -- --] | " + "x" * 200)
+    lines = report.whole_section(results)
+    row = next(x for x in lines if x.startswith("| tutorial"))
+    assert "\n" not in row and row.endswith("... |")
+    assert row.count("|") == 13

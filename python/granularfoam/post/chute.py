@@ -297,6 +297,8 @@ def outflow(case, set_name="outlet", h=T3.h):
     figure 4."""
     from scipy.optimize import brentq
     sampled = time_names(case)
+    assert len(sampled) >= 2, \
+        f"{case}: the outflow needs two sampled times, found {sampled}"
     t_prev, t_end = sampled[-2], sampled[-1]
     prof = profiles(case, t_end, function="profiles", set_name=set_name)
     z = prof["z"]
