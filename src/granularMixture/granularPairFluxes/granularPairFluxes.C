@@ -256,14 +256,36 @@ Foam::scalar Foam::granularPairFluxes::fluxSum
     const PtrList<surfaceScalarField>& fluxes
 )
 {
-    surfaceScalarField sum(fluxes[0]);
-    scalar largest = max(mag(fluxes[0])).value();
-    for (label i = 1; i < fluxes.size(); ++i)
+    // Face by face over the internal faces and every patch, without
+    // temporary fields: this is taken twice per sub-cycle
+    scalar sumMax = 0;
+    scalar largest = 0;
+    const label nPatches = fluxes[0].boundaryField().size();
+    for (label part = -1; part < nPatches; ++part)
     {
-        sum += fluxes[i];
-        largest = max(largest, max(mag(fluxes[i])).value());
+        List<const scalarField*> F(fluxes.size());
+        forAll(fluxes, i)
+        {
+            F[i] =
+                part < 0
+              ? &fluxes[i].primitiveField()
+              : &fluxes[i].boundaryField()[part];
+        }
+        forAll(*F[0], facei)
+        {
+            scalar sum = 0;
+            forAll(F, i)
+            {
+                const scalar f = (*F[i])[facei];
+                sum += f;
+                largest = max(largest, mag(f));
+            }
+            sumMax = max(sumMax, mag(sum));
+        }
     }
-    return max(mag(sum)).value()/max(largest, VSMALL);
+    reduce(sumMax, maxOp<scalar>());
+    reduce(largest, maxOp<scalar>());
+    return sumMax/max(largest, VSMALL);
 }
 
 

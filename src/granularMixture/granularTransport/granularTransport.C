@@ -25,36 +25,23 @@ Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
 (
     const volScalarField& alpha,
     const surfaceScalarField& alphaPhi,
-    const surfaceScalarField* alphaPhi2,
-    scalarField* outgoing,
-    scalarField* incoming
+    const surfaceScalarField* alphaPhi2
 ) const
 {
-    // The update of MULES::explicitSolve, without changing the field
+    // The update of MULES::explicitSolve, without changing the field:
+    // fvc::surfaceIntegrate's sums, in loops without temporary fields
     const labelUList& own = mesh_.owner();
     const labelUList& nei = mesh_.neighbour();
     const scalar deltaT = mesh_.time().deltaTValue();
     const scalarField& V = mesh_.V().field();
 
     scalarField outflow(mesh_.nCells(), Zero);
-    if (outgoing)
-    {
-        *outgoing = Zero;
-        *incoming = Zero;
-    }
     forAll(nei, facei)
     {
-        const scalar f = alphaPhi[facei];
-        const scalar f2 = alphaPhi2 ? (*alphaPhi2)[facei] : 0;
-        outflow[own[facei]] += f + f2;
-        outflow[nei[facei]] -= f + f2;
-        if (outgoing)
-        {
-            const label from = f > 0 ? own[facei] : nei[facei];
-            const label to = f > 0 ? nei[facei] : own[facei];
-            (*outgoing)[from] += mag(f);
-            (*incoming)[to] += mag(f);
-        }
+        const scalar f =
+            alphaPhi[facei] + (alphaPhi2 ? (*alphaPhi2)[facei] : 0);
+        outflow[own[facei]] += f;
+        outflow[nei[facei]] -= f;
     }
     forAll(mesh_.boundary(), patchi)
     {
@@ -62,20 +49,10 @@ Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
         const fvsPatchScalarField& pf = alphaPhi.boundaryField()[patchi];
         forAll(faceCells, facei)
         {
-            const scalar f = pf[facei];
-            const scalar f2 =
-                alphaPhi2 ? alphaPhi2->boundaryField()[patchi][facei] : 0;
-            outflow[faceCells[facei]] += f + f2;
-            if (outgoing)
-            {
-                (f > 0 ? *outgoing : *incoming)[faceCells[facei]] += mag(f);
-            }
+            outflow[faceCells[facei]] +=
+                pf[facei]
+              + (alphaPhi2 ? alphaPhi2->boundaryField()[patchi][facei] : 0);
         }
-    }
-    if (outgoing)
-    {
-        *outgoing *= deltaT/V;
-        *incoming *= deltaT/V;
     }
 
     auto tpsi = tmp<scalarField>::New(alpha.oldTime().primitiveField());
@@ -86,6 +63,42 @@ Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
     }
     psi -= deltaT*(outflow/V);
     return tpsi;
+}
+
+
+void Foam::granularTransport::fluxParts
+(
+    const surfaceScalarField& alphaPhi,
+    scalarField& outgoing,
+    scalarField& incoming
+) const
+{
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+
+    outgoing = Zero;
+    incoming = Zero;
+    forAll(nei, facei)
+    {
+        const scalar f = alphaPhi[facei];
+        const label from = f > 0 ? own[facei] : nei[facei];
+        const label to = f > 0 ? nei[facei] : own[facei];
+        outgoing[from] += mag(f);
+        incoming[to] += mag(f);
+    }
+    forAll(mesh_.boundary(), patchi)
+    {
+        const labelUList& faceCells = mesh_.boundary()[patchi].faceCells();
+        const fvsPatchScalarField& pf = alphaPhi.boundaryField()[patchi];
+        forAll(faceCells, facei)
+        {
+            (pf[facei] > 0 ? outgoing : incoming)[faceCells[facei]] +=
+                mag(pf[facei]);
+        }
+    }
+    const scalarField dtByV(mesh_.time().deltaTValue()/mesh_.V().field());
+    outgoing *= dtByV;
+    incoming *= dtByV;
 }
 
 
@@ -121,13 +134,20 @@ Foam::label Foam::granularTransport::repairBounds
     {
         const scalarField psi
         (
-            explicitUpdate
-            (
-                phases_[i], corrections[i], &upwindPhis[i], &outgoing,
-                &incoming
-            )
+            explicitUpdate(phases_[i], corrections[i], &upwindPhis[i])
         );
         const scalarField excess(boundsExcess(psi) - upwindExcess[i]);
+        label nPhaseOut = 0;
+        forAll(excess, celli)
+        {
+            nPhaseOut += excess[celli] > tol;
+        }
+        if (nPhaseOut == 0)
+        {
+            continue;
+        }
+        nOut += nPhaseOut;
+        fluxParts(corrections[i], outgoing, incoming);
 
         // The factor of a cell's outgoing corrections (below 0) or of its
         // incoming ones (above 1) that takes away the excess
@@ -137,7 +157,6 @@ Foam::label Foam::granularTransport::repairBounds
         {
             if (excess[celli] > tol)
             {
-                ++nOut;
                 scalarField& l = psi[celli] < 0 ? lambdaOut : lambdaIn;
                 const scalar part =
                     psi[celli] < 0 ? outgoing[celli] : incoming[celli];
