@@ -76,8 +76,6 @@ OUTLET_COLUMNS = 10
 # The reference: PISO with 200 correctors, every p_rgh solution to 1e-13,
 # the coupling named REFERENCE_NAME
 REFERENCE_NAME = "reference"
-# The case's own coupling, as its fvSolution gives it
-TUTORIAL_NAME = "tutorial"
 REFERENCE = {
     "PIMPLE.pressureCoupling": "PISO",
     "PIMPLE.nCorrectors": 200,
@@ -87,6 +85,8 @@ REFERENCE = {
     "solvers.p_rghFinal.tolerance": 1e-13,
     "solvers.p_rghFinal.relTol": 0,
 }
+# The case's own coupling, as its fvSolution gives it
+TUTORIAL_NAME = "tutorial"
 
 
 # --------------------------------------------------------------------------
