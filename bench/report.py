@@ -198,12 +198,7 @@ def whole_section(results):
                  g(r["cpu_per_simulated_s"], "{:.3g}"),
                  g(r["ms_per_step"], "{:.3g}"),
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
-        for key, fmt in (("outlet_l2_u_bagnold", "{:.3%}"),
-                         ("outlet_l2_phis_gray_chugunov", "{:.3%}"),
-                         ("outlet_depth_averaged_phis", "{:.4f}"),
-                         ("outlet_change_last_interval_u", "{:.2g}"),
-                         ("outlet_change_last_interval_phis", "{:.2g}")):
-            cells.append(g(r.get(key), fmt) if ok else "")
+        cells += outflow_cells(r, ok)
         # one line of the table, however long the reason
         status = " ".join(str(r["status"]).replace("|", "/").split())
         cells.append(status if len(status) <= 80 else status[:77] + "...")
@@ -268,6 +263,18 @@ def coupling_runs(section):
             if path.exists() else [])
 
 
+def outflow_cells(r, ok):
+    """The outflow columns of a whole chute run r (granularfoam.post.chute
+    outflow): u vs (5.4), phi^s vs (5.8), phi-bar^s and their changes over
+    the last second; empty unless ok."""
+    return [dash_or(r.get(key), fmt) if ok else ""
+            for key, fmt in (("outlet_l2_u_bagnold", "{:.3%}"),
+                             ("outlet_l2_phis_gray_chugunov", "{:.3%}"),
+                             ("outlet_depth_averaged_phis", "{:.4f}"),
+                             ("outlet_change_last_interval_u", "{:.2g}"),
+                             ("outlet_change_last_interval_phis", "{:.2g}"))]
+
+
 def whole_chute_section():
     """Whole chute runs with a coupling (bench/harness chute)."""
     runs = coupling_runs("whole_chute")
@@ -305,15 +312,7 @@ def whole_chute_section():
                  g(r["max_delta_t"]), g(r["end_time"]), g(r["steps"], "{}"),
                  g(r["cpu_seconds"], "{:.0f}"),
                  g(r["pressure_solutions_per_step"], "{:.1f}"),
-                 g(r.get("outlet_l2_u_bagnold"), "{:.3%}") if ok else "",
-                 g(r.get("outlet_l2_phis_gray_chugunov"), "{:.3%}")
-                 if ok else "",
-                 g(r.get("outlet_depth_averaged_phis"), "{:.4f}")
-                 if ok else "",
-                 g(r.get("outlet_change_last_interval_u"), "{:.2g}")
-                 if ok else "",
-                 g(r.get("outlet_change_last_interval_phis"), "{:.2g}")
-                 if ok else "",
+                 *outflow_cells(r, ok),
                  g(r.get("date"), "{}"),
                  r["status"]]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")

@@ -28,40 +28,19 @@ Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
     const surfaceScalarField* alphaPhi2
 ) const
 {
-    // The update of MULES::explicitSolve, without changing the field:
-    // fvc::surfaceIntegrate's sums, in loops without temporary fields
-    const labelUList& own = mesh_.owner();
-    const labelUList& nei = mesh_.neighbour();
-    const scalar deltaT = mesh_.time().deltaTValue();
-    const scalarField& V = mesh_.V().field();
-
-    scalarField outflow(mesh_.nCells(), Zero);
-    forAll(nei, facei)
-    {
-        const scalar f =
-            alphaPhi[facei] + (alphaPhi2 ? (*alphaPhi2)[facei] : 0);
-        outflow[own[facei]] += f;
-        outflow[nei[facei]] -= f;
-    }
-    forAll(mesh_.boundary(), patchi)
-    {
-        const labelUList& faceCells = mesh_.boundary()[patchi].faceCells();
-        const fvsPatchScalarField& pf = alphaPhi.boundaryField()[patchi];
-        forAll(faceCells, facei)
-        {
-            outflow[faceCells[facei]] +=
-                pf[facei]
-              + (alphaPhi2 ? alphaPhi2->boundaryField()[patchi][facei] : 0);
-        }
-    }
-
+    // The update of MULES::explicitSolve, without changing the field
     auto tpsi = tmp<scalarField>::New(alpha.oldTime().primitiveField());
     scalarField& psi = tpsi.ref();
     if (mesh_.moving())
     {
         psi *= mesh_.Vsc0()().field()/mesh_.Vsc()().field();
     }
-    psi -= deltaT*(outflow/V);
+    const tmp<surfaceScalarField> tflux
+    (
+        alphaPhi2 ? alphaPhi + *alphaPhi2 : tmp<surfaceScalarField>(alphaPhi)
+    );
+    psi -= mesh_.time().deltaTValue()
+       *fvc::surfaceIntegrate(tflux())().primitiveField();
     return tpsi;
 }
 
@@ -96,7 +75,8 @@ void Foam::granularTransport::fluxParts
                 mag(pf[facei]);
         }
     }
-    const scalarField dtByV(mesh_.time().deltaTValue()/mesh_.V().field());
+    // per unit volume as fvc::surfaceIntegrate and MULES take it
+    const scalarField dtByV(mesh_.time().deltaTValue()/mesh_.Vsc()().field());
     outgoing *= dtByV;
     incoming *= dtByV;
 }
