@@ -40,7 +40,8 @@ it, so that a coupling can be judged on a developed flow of a long run.
 (an entry with the same state, step, steps, coupling and edits is
 replaced).  --edit changes a dictionary of the case (for example
 constant/granularProperties:air.eta=1e-2; system/fvSolution:
-maxAlphaSubCycles=M sets the phases' sub-cycles): `states --edit` runs the
+maxAlphaSubCycles=M sets the phases' sub-cycles, nLimiterIter=N their
+limiter's iterations): `states --edit` runs the
 state with it from the start, and `run --edit` runs the candidates and their
 reference with it from that state, so that a change of the model is
 judged against its own converged step.  See bench/README.md.
@@ -371,13 +372,20 @@ def parse_edit(text):
 
 
 def apply_edit(case, dictionary, entry, value):
-    """Set the entry of a dictionary of case.  maxAlphaSubCycles of
-    system/fvSolution goes to the phases' solver entry, whose name is a
-    regular expression ("alpha.*") that foamDictionary cannot scope: M
-    sub-cycles at most, or 0 for the transport in the momentum step
-    (nAlphaSubCycles 1)."""
-    if (dictionary, entry) != ("system/fvSolution", "maxAlphaSubCycles"):
+    """Set the entry of a dictionary of case.  maxAlphaSubCycles and
+    nLimiterIter of system/fvSolution go to the phases' solver entry, whose
+    name is a regular expression ("alpha.*") that foamDictionary cannot
+    scope: M sub-cycles at most, or 0 for the transport in the momentum
+    step (nAlphaSubCycles 1); the MULES limiter's iterations."""
+    if dictionary != "system/fvSolution" or entry not in (
+            "maxAlphaSubCycles", "nLimiterIter"):
         set_entry(case, dictionary, entry, value)
+        return
+    if entry == "nLimiterIter":
+        if int(value) < 1:
+            raise ValueError(f"nLimiterIter={value}: not a positive integer")
+        edit(case / "system" / "fvSolution",
+             [(r"nLimiterIter\s+\d+;", f"nLimiterIter {int(value)};")])
         return
     edit(case / "system" / "fvSolution",
          [(r"(?:max|n)AlphaSubCycles\s+\d+;",

@@ -136,3 +136,26 @@ def test_whole_run_status_keeps_to_one_table_row():
     row = next(x for x in lines if x.startswith("| tutorial"))
     assert "\n" not in row and row.endswith("... |")
     assert row.count("|") == 13
+
+
+def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
+    """--edit system/fvSolution:nLimiterIter=N and maxAlphaSubCycles=M
+    change the phases' solver entry ("alpha.*"), which foamDictionary
+    cannot scope; a limiter count below 1 is refused."""
+    import harness
+    case = tmp_path / "case"
+    (case / "system").mkdir(parents=True)
+    fvSolution = case / "system" / "fvSolution"
+    fvSolution.write_text((PROJECT / "tutorials" / "chute" / "system"
+                           / "fvSolution").read_text())
+    harness.apply_edits(case, ["system/fvSolution:nLimiterIter=2",
+                               "system/fvSolution:maxAlphaSubCycles=7"])
+    assert generate.foam_value(fvSolution,
+                               'solvers/"alpha.*"/nLimiterIter') == "2"
+    assert generate.foam_value(fvSolution,
+                               'solvers/"alpha.*"/maxAlphaSubCycles') == "7"
+    harness.apply_edits(case, ["system/fvSolution:maxAlphaSubCycles=0"])
+    assert generate.foam_value(fvSolution,
+                               'solvers/"alpha.*"/nAlphaSubCycles') == "1"
+    with pytest.raises(ValueError, match="nLimiterIter=0"):
+        harness.apply_edits(case, ["system/fvSolution:nLimiterIter=0"])
