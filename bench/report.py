@@ -403,10 +403,11 @@ def profile_section():
         "",
         "OpenFOAM's profiling of whole chute runs (the rows above with "
         "`profiling`): each section's share of the time loop, its children "
-        "included. v1912 times a linear solver over the life of its object, "
-        "so `lduMatrix::solver.coarsestLevelCorr`, GAMG's coarsest-level "
-        "solver (17 cells on the chute), spans nearly all of its parent "
-        "GAMG solution, not the coarse solution alone. Numbers in "
+        "included. The linear solvers' own sections "
+        "(`lduMatrix::solver.*`) are left out: v1912 times a solver over "
+        "the life of its object, and the Krylov coupling keeps its inner "
+        "solvers for the whole step; `fvMatrix::solve.*` and the "
+        "`granular::Krylov::*Solve` sections time the solutions. Numbers in "
         "`bench/coupling.json` (`whole_chute`, `profile_shares`).",
         "",
     ]

@@ -159,3 +159,30 @@ def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
                                'solvers/"alpha.*"/nAlphaSubCycles') == "1"
     with pytest.raises(ValueError, match="nLimiterIter=0"):
         harness.apply_edits(case, ["system/fvSolution:nLimiterIter=0"])
+
+
+def test_profile_shares_leave_out_the_solver_lifetimes(tmp_path):
+    """The harness's profile shares: each section's total over the time
+    loop's, a section under two parents summed, the linear solvers'
+    lifetime sections (lduMatrix::solver.*) and the sections below the
+    smallest share left out."""
+    import harness
+    sections = [("application::main", 1, 10.5), ("time.run() case", 10, 10),
+                ("granular::Krylov", 10, 6), ("granular::Krylov::residual",
+                                              10, 1),
+                ("granular::Krylov::residual", 20, 0.5),
+                ("lduMatrix::solver.p_rghKrylov", 10, 5.9),
+                ("fvMatrix::solve.p_rgh", 10, 0.95),
+                ("granular::UEqn", 10, 0.05)]
+    body = "".join(
+        f"    trigger{i}\n    {{\n        id {i};\n"
+        f"        description     \"{d}\";\n        calls           {c};\n"
+        f"        totalTime       {t};\n        childTime       0;\n    }}\n"
+        for i, (d, c, t) in enumerate(sections))
+    (tmp_path / "1" / "uniform").mkdir(parents=True)
+    (tmp_path / "1" / "uniform" / "profiling").write_text(
+        "profiling\n{\n" + body + "}\n")
+    (tmp_path / "1" / "alpha.air").write_text("")
+    assert harness.profile_shares(tmp_path) == {
+        "granular::Krylov": 0.6, "granular::Krylov::residual": 0.15,
+        "fvMatrix::solve.p_rgh": 0.095}
