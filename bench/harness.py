@@ -741,41 +741,49 @@ def store_whole(entries, command):
         entries, command)
 
 
-def whole_drum(source, start, coupling, edits):
+def whole_drum(source, start, coupling, edits, duration=None):
     """One revolution of a drum run from its written time `start`, on the
     source run's decomposition: the source's case (its processor
     directories at `start`) with the coupling and the edits; the
     rotatingDrum monitor over the revolution against the source run's
-    over the same window (granularfoam.post.drum)."""
+    over the same window (granularfoam.post.drum).  With a duration
+    shorter than a revolution, the run of that duration and its cost
+    alone."""
+    duration = duration or drum.PERIOD
+    end = start + duration
     source = Path(source).resolve()
     ranks = sorted(source.glob("processor[0-9]*"))
     assert ranks, f"{source}: no processor directories"
     start_name = _written(ranks[0], start)
     n = int(read_parameters(source, "drumParameters")["N"])
     case = WORK / "drum" / "_".join(filter(None, [
-        f"N{n}", f"t{start:g}", coupling, _tag(edits)]))
+        f"N{n}", f"t{start:g}",
+        f"d{duration:g}" if duration != drum.PERIOD else "", coupling,
+        _tag(edits)]))
     if case.exists():
         shutil.rmtree(case)
     shutil.copytree(source, case, ignore=_state_of_run(source, start_name))
-    set_entry(case, "system/drumParameters", "endTime", start + drum.PERIOD)
-    set_entry(case, "system/drumParameters", "writeInterval", drum.PERIOD)
+    set_entry(case, "system/drumParameters", "endTime", end)
+    set_entry(case, "system/drumParameters", "writeInterval", duration)
     for entry, value in coupling_settings(coupling).items():
         set_entry(case, "system/fvSolution", entry, value)
     apply_edits(case, edits)
     print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
-          f"to {start + drum.PERIOD:g} s", flush=True)
+          f"to {end:g} s", flush=True)
     log = case / f"log.{SOLVER}"
     with open(log, "w") as out:
         rc = subprocess.call(
             ["mpirun", "-np", str(len(ranks)), SOLVER, "-parallel",
              "-case", str(case)], stdout=out, stderr=subprocess.STDOUT)
-    entry = {"source": str(source), "N": n, "start": start,
-             "end": start + drum.PERIOD,
+    entry = {"source": str(source), "N": n, "start": start, "end": end,
              "source_coupling": drum.coupling(source), "coupling": coupling,
              "edits": list(edits), "ranks": len(ranks)}
     entry.update(log_cost(log.read_text()))
     if rc != 0:
         entry["status"] = f"failed (exit {rc})"
+        return entry
+    if duration < drum.PERIOD - 1e-9:
+        entry["status"] = "ok; part of a revolution, its cost alone"
         return entry
     window = drum_window(case, start)
     if window is None:
@@ -854,7 +862,7 @@ def store_drum(entries, command):
         "pressure seen by the rheology in the grains over the steps; the "
         "same of the source run over the same window (source_window) and "
         "the relative differences (*_vs_source).",
-        lambda e: (e["source"], e["start"], e["coupling"],
+        lambda e: (e["source"], e["start"], e["end"], e["coupling"],
                    tuple(e["edits"])),
         entries, command)
 
@@ -903,6 +911,9 @@ def main(argv=None):
     pd.add_argument("--start", type=float, required=True,
                     help="a time the source wrote [s]")
     pd.add_argument("--couplings", nargs="+", default=["Krylov-BFBt-20"])
+    pd.add_argument("--duration", type=float, default=None,
+                    help="simulated seconds, less than a revolution: the "
+                    "cost alone (default: one revolution)")
     pd.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
     pd.add_argument("--no-store", action="store_true",
@@ -945,6 +956,10 @@ def main(argv=None):
             Path(args.source).glob("processor[0-9]*")):
         parser.error(f"--source {args.source}: no processor directories "
                      "(a decomposed drum run)")
+    if args.what == "drum" and args.duration is not None and not (
+            0 < args.duration <= drum.PERIOD):
+        parser.error(f"--duration {args.duration:g}: not in (0, "
+                     f"{drum.PERIOD:g}] s")
     if args.what in ("chute", "drum"):
         try:
             for c in args.couplings:
@@ -956,7 +971,8 @@ def main(argv=None):
                 e = whole_chute(coupling, args.end_time, args.sub_cycles,
                                 args.max_delta_t, args.edit)
             else:
-                e = whole_drum(args.source, args.start, coupling, args.edit)
+                e = whole_drum(args.source, args.start, coupling, args.edit,
+                               args.duration)
             print(json.dumps(e), flush=True)
             if not args.no_store:
                 (store_whole if args.what == "chute" else store_drum)(

@@ -322,6 +322,7 @@ def whole_chute_section():
 def whole_drum_section():
     """One drum revolution from a written time, by coupling (bench/harness
     drum), against the run it started from."""
+    from granularfoam.post import drum
     runs = coupling_runs("whole_drum")
     if not runs:
         return []
@@ -335,16 +336,27 @@ def whole_drum_section():
         "`rotatingDrum` monitor) and the lowest pressure seen by the "
         "rheology in the grains over the steps, each with the source run's "
         "over the same revolution and the relative difference. CPU: the "
-        "master rank's. Numbers in `bench/coupling.json` (`whole_drum`).",
+        "master rank's, per simulated second, and projected to the eight "
+        "revolutions of the tutorial (80 s) on as many cores as ranks. A "
+        "row of part of a revolution (`--duration`) gives that cost alone. "
+        "Numbers in `bench/coupling.json` (`whole_drum`).",
         "",
-        "| N | revolution [s] | coupling | steps | CPU [s] | pressure "
+        "| N | revolution [s] | coupling | steps | CPU [s] | CPU / "
+        "simulated s | 8 revolutions, projected [h] | pressure "
         "solutions / step | J at the end | surface angle, mean [deg] | "
         "peak speed, mean / max [m/s] | lowest p grains [Pa] (steps < 0) "
         "| status |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
 
     g = dash_or
+
+    def per_second(cpu, r):
+        """CPU per simulated second and the eight revolutions' hours."""
+        if cpu is None:
+            return ["", ""]
+        rate = cpu / (r["end"] - r["start"])
+        return [f"{rate:.0f}", f"{rate * 8 * drum.PERIOD / 3600:.1f}"]
 
     def vs(r, key):
         d = r.get(f"{key}_vs_source")
@@ -361,7 +373,9 @@ def whole_drum_section():
                 f"| {r['N']} | {r['start']:g}–{r['end']:g} | the "
                 f"source run ({r['source_coupling']}) | "
                 f"{src['window_steps']} | "
-                f"{src['window_cpu_seconds']:.0f} | | "
+                f"{src['window_cpu_seconds']:.0f} | "
+                + " | ".join(per_second(src['window_cpu_seconds'], r))
+                + " | | "
                 f"{g(src['J_end'], '{:.4f}')} | "
                 f"{src['surface_angle_mean_deg']:.2f} | "
                 f"{src['peak_speed_mean']:.3f} / {src['peak_speed_max']:.3f}"
@@ -372,8 +386,9 @@ def whole_drum_section():
             if r["edits"] else "")
         cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
                  r["steps"], g(r["cpu_seconds"], "{:.0f}"),
+                 *per_second(r["cpu_seconds"], r),
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
-        if ok:
+        if ok and "J_end" in r:
             cells += [
                 g(r["J_end"], "{:.4f}") + vs(r, "J_end"),
                 f"{r['surface_angle_mean_deg']:.2f}"

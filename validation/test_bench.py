@@ -186,3 +186,22 @@ def test_profile_shares_leave_out_the_solver_lifetimes(tmp_path):
     assert harness.profile_shares(tmp_path) == {
         "granular::Krylov": 0.6, "granular::Krylov::residual": 0.15,
         "fvMatrix::solve.p_rgh": 0.095}
+
+
+def test_drum_rows_give_the_cost_per_simulated_second(monkeypatch):
+    """A whole drum row and a row of part of a revolution: CPU per
+    simulated second and the eight revolutions' projection in hours; the
+    part's row without the monitor's columns."""
+    partial = {"source": "/runs/N200", "N": 200, "start": 70.0,
+               "end": 70.5, "source_coupling": "Krylov CahouetChabard 30",
+               "coupling": "tutorial", "edits": [], "ranks": 2,
+               "steps": 160, "cpu_seconds": 225.0,
+               "pressure_solutions_per_step": 31.0,
+               "status": "ok; part of a revolution, its cost alone"}
+    monkeypatch.setattr(report, "coupling_runs",
+                        lambda section: [partial])
+    lines = report.whole_drum_section()
+    row = next(x for x in lines if x.startswith("| 200 "))
+    assert row == ("| 200 | 70–70.5 | tutorial | 160 | 225 | 450 | 10.0 | "
+                   "31.0 |  |  |  |  | ok; part of a revolution, its cost "
+                   "alone |")
