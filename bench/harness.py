@@ -770,19 +770,28 @@ def whole_drum(source, start, coupling, edits, duration=None):
     apply_edits(case, edits)
     print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
           f"to {end:g} s", flush=True)
-    log = case / f"log.{SOLVER}"
-    with open(log, "w") as out:
+    with open(case / f"log.{SOLVER}", "w") as out:
         rc = subprocess.call(
             ["mpirun", "-np", str(len(ranks)), SOLVER, "-parallel",
              "-case", str(case)], stdout=out, stderr=subprocess.STDOUT)
-    entry = {"source": str(source), "N": n, "start": start, "end": end,
+    return drum_entry(case, source, start, end, coupling, edits, rc)
+
+
+def drum_entry(case, source, start, end, coupling, edits, rc):
+    """The whole_drum entry of the run in case of the source run from start
+    to end, which ended with exit code rc."""
+    source = Path(source).resolve()
+    entry = {"source": str(source),
+             "N": int(read_parameters(source, "drumParameters")["N"]),
+             "start": start, "end": end,
              "source_coupling": drum.coupling(source), "coupling": coupling,
-             "edits": list(edits), "ranks": len(ranks)}
-    entry.update(log_cost(log.read_text()))
+             "edits": list(edits),
+             "ranks": len(list(source.glob("processor[0-9]*")))}
+    entry.update(log_cost((case / f"log.{SOLVER}").read_text()))
     if rc != 0:
         entry["status"] = f"failed (exit {rc})"
         return entry
-    if duration < drum.PERIOD - 1e-9:
+    if end - start < drum.PERIOD - 1e-9:
         entry["status"] = "ok; part of a revolution, its cost alone"
         return entry
     window = drum_window(case, start)
@@ -790,6 +799,9 @@ def whole_drum(source, start, coupling, edits, duration=None):
         entry["status"] = "ran; the monitor ends before the end"
         return entry
     entry.update(window, status="ok")
+    if not (source / "postProcessing" / "drum").is_dir():
+        entry["status"] = "ok; the source is a state, not a run"
+        return entry
     ref = drum_window(source, start)
     entry["source_window"] = ref
     if ref is None:
