@@ -719,7 +719,7 @@ def profile_shares(case, smallest=0.01):
     for description, seconds in sections:
         share = float(seconds) / loop[0]
         # lduMatrix::solver.*: v1912 times a solver over the life of its
-        # object, and the Krylov coupling keeps its solvers for the step
+        # object (GAMG's coarsest-level solver spans its parent's solution)
         if share >= smallest and not description.startswith(
                 ("application::", "time.run()", "lduMatrix::solver.")):
             # the same section under two parents: their sum

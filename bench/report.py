@@ -420,9 +420,10 @@ def profile_section():
         "`profiling`): each section's share of the time loop, its children "
         "included. The linear solvers' own sections "
         "(`lduMatrix::solver.*`) are left out: v1912 times a solver over "
-        "the life of its object, and the Krylov coupling keeps its inner "
-        "solvers for the whole step; `fvMatrix::solve.*` and the "
-        "`granular::Krylov::*Solve` sections time the solutions. Numbers in "
+        "the life of its object, so that GAMG's coarsest-level solver "
+        "(`coarsestLevelCorr`) spans nearly all of its parent's solution; "
+        "`fvMatrix::solve.*` and the `granular::Krylov::*Solve` sections "
+        "time the solutions. Numbers in "
         "`bench/coupling.json` (`whole_chute`, `profile_shares`).",
         "",
     ]
