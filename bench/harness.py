@@ -866,8 +866,9 @@ def drum_window(case, start):
 def store_drum(entries, command):
     store_runs(
         "whole_drum",
-        "One revolution of the square drum from a written time of a run "
-        "(bench/harness drum), on the run's decomposition, with a "
+        "One revolution of the square drum (or, with --duration, part of "
+        "one: its cost alone) from a written time of a run or a state "
+        "(bench/harness drum), on its decomposition, with a "
         "coupling: steps, CPU seconds (master), pressure solutions per "
         "step; J of (7.6) at the end, the surface angle and the peak "
         "speed over the revolution (the rotatingDrum monitor), the lowest "
