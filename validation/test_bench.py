@@ -205,3 +205,18 @@ def test_drum_rows_give_the_cost_per_simulated_second(monkeypatch):
     assert row == ("| 200 | 70–70.5 | tutorial | 160 | 225 | 450 | 10.0 | "
                    "31.0 |  |  |  |  | ok; part of a revolution, its cost "
                    "alone |")
+
+
+@pytest.mark.parametrize("duration", ["0", "10.5"])
+def test_harness_drum_refuses_a_duration_beyond_a_revolution(
+        tmp_path, capsys, duration):
+    """bench/harness drum --duration outside (0, 10] s: a usage error
+    naming the value, before anything runs."""
+    import harness
+    (tmp_path / "processor0").mkdir()
+    with pytest.raises(SystemExit) as exit_info:
+        harness.main(["drum", "--source", str(tmp_path), "--start", "70",
+                      "--duration", duration, "--no-store"])
+    assert exit_info.value.code == 2
+    assert f"--duration {float(duration):g}: not in (0, 10] s" in \
+        capsys.readouterr().err
