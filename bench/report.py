@@ -530,6 +530,12 @@ def harness_section():
         if r["status"] != "ok":
             cells = [r["state"], edits(r), g(r["dt"]), steps(r),
                      coupling(r), r["status"], "", "", "", "", "", ""]
+        elif r["coupling"] == r.get("reference", "reference"):
+            # The reference's own run: its cost, no error
+            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
+                     r["coupling"] + " (the reference)", "–", "–", "–", "–",
+                     "–", g(r["pressure_solutions_per_step"]),
+                     g(r["cpu_ms_per_step"])]
         else:
             cells = [r["state"], edits(r), g(r["dt"]), steps(r),
                      coupling(r), g(r["l2_u_grains"]), g(r["l2_u_air"]),

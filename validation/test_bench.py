@@ -220,3 +220,20 @@ def test_harness_drum_refuses_a_duration_beyond_a_revolution(
     assert exit_info.value.code == 2
     assert f"--duration {float(duration):g}: not in (0, 10] s" in \
         capsys.readouterr().err
+
+
+def test_harness_rows_show_the_references_own_run(monkeypatch):
+    """An entry of the reference coupling run against itself (bench/harness
+    run --couplings R --reference R) has no errors: its row gives its cost
+    and names it the reference."""
+    own = {"state": "/runs/N150K@30", "time": 30.0, "dt": 0.004,
+           "steps": 10, "coupling": "Krylov-CahouetChabard-200-tol1e-8",
+           "edits": [], "reference": "Krylov-CahouetChabard-200-tol1e-8",
+           "status": "ok", "pressure_solutions_per_step": 40.9,
+           "cpu_ms_per_step": 2640.0}
+    monkeypatch.setattr(report, "coupling_runs", lambda section: [own])
+    row = next(x for x in report.harness_section()
+               if x.startswith("| /runs/N150K@30 "))
+    assert row == ("| /runs/N150K@30 | – | 0.004 | 10 | "
+                   "Krylov-CahouetChabard-200-tol1e-8 (the reference) | "
+                   "– | – | – | – | – | 41 | 2.6e+03 |")
