@@ -11,6 +11,7 @@
 #include "constrainHbyA.H"
 #include "constrainPressure.H"
 #include "profiling.H"
+#include "extrapolatedCalculatedFvPatchFields.H"
 
 // * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
 
@@ -143,6 +144,44 @@ void Foam::KrylovStep::checkEuler() const
 }
 
 
+Foam::tmp<Foam::surfaceScalarField>
+Foam::KrylovStep::inertialCoefficient() const
+{
+    // The mixture's viscosity (4.7b)
+    const volScalarField& eta =
+        mesh_.lookupObject<volScalarField>("granularMixture:eta");
+
+    // The diagonal of the stress's Laplacian, its orthogonal part
+    const scalarField viscous
+    (
+        fvc::surfaceSum
+        (
+            fvc::interpolate(eta)*mesh_.magSf()*mesh_.nonOrthDeltaCoeffs()
+        )().primitiveField()/mesh_.V()
+    );
+
+    volScalarField A
+    (
+        IOobject("AinertiaKrylov", mesh_.time().timeName(), mesh_),
+        mesh_,
+        dimensionedScalar(dimDensity/dimTime, Zero),
+        extrapolatedCalculatedFvPatchScalarField::typeName
+    );
+    A.primitiveFieldRef() = max
+    (
+        1.0/s_.rAU.primitiveField() - viscous,
+        s_.rho.primitiveField()/mesh_.time().deltaTValue()
+    );
+    A.correctBoundaryConditions();
+
+    return tmp<surfaceScalarField>::New
+    (
+        "rAinertiaf",
+        fvc::interpolate(1.0/A)
+    );
+}
+
+
 Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
 (
     const scalarField& r
@@ -150,16 +189,10 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
 {
     if (!Linertia_)
     {
-        // rho/dt is the Euler time derivative's coefficient
+        // rho/dt, the floor of the inertia, is the Euler time derivative's
+        // coefficient
         checkEuler();
-        Linertia_ = laplacian
-        (
-            surfaceScalarField
-            (
-                "dtByRhof",
-                mesh_.time().deltaT()/fvc::interpolate(s_.rho)
-            )
-        );
+        Linertia_ = laplacian(inertialCoefficient());
     }
     // The mixture's viscosity (4.7b)
     const volScalarField& eta =
