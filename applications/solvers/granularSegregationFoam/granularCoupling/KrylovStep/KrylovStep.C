@@ -144,19 +144,22 @@ void Foam::KrylovStep::checkEuler() const
 }
 
 
+const Foam::volScalarField& Foam::KrylovStep::eta() const
+{
+    // The mixture's viscosity (4.7b)
+    return mesh_.lookupObject<volScalarField>("granularMixture:eta");
+}
+
+
 Foam::tmp<Foam::surfaceScalarField>
 Foam::KrylovStep::inertialCoefficient() const
 {
-    // The mixture's viscosity (4.7b)
-    const volScalarField& eta =
-        mesh_.lookupObject<volScalarField>("granularMixture:eta");
-
     // The diagonal of the stress's Laplacian, its orthogonal part
     const scalarField viscous
     (
         fvc::surfaceSum
         (
-            fvc::interpolate(eta)*mesh_.magSf()*mesh_.nonOrthDeltaCoeffs()
+            fvc::interpolate(eta())*mesh_.magSf()*mesh_.nonOrthDeltaCoeffs()
         )().primitiveField()/mesh_.V()
     );
 
@@ -194,10 +197,7 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
         checkEuler();
         Linertia_ = laplacian(inertialCoefficient());
     }
-    // The mixture's viscosity (4.7b)
-    const volScalarField& eta =
-        mesh_.lookupObject<volScalarField>("granularMixture:eta");
-    return solve(*Linertia_, r) - eta.primitiveField()*r;
+    return solve(*Linertia_, r) - eta().primitiveField()*r;
 }
 
 
