@@ -527,25 +527,25 @@ def harness_section():
             order.get(r["state"], 9), r["edits"], r["dt"] or 0,
             r.get("steps_run", r["steps"]) or 0,
             *coupling_order(r["coupling"]))):
+        head = [r["state"], edits(r), g(r["dt"]), steps(r)]
         if r["status"] != "ok":
-            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
-                     coupling(r), r["status"], "", "", "", "", "", ""]
+            cells = head + [coupling(r), r["status"], "", "", "", "", "", ""]
         elif r["coupling"] == r.get("reference", "reference"):
             # The reference's own run: its cost, no error
-            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
-                     r["coupling"] + " (the reference)", "–", "–", "–", "–",
-                     "–", g(r["pressure_solutions_per_step"]),
-                     g(r["cpu_ms_per_step"])]
+            cells = head + [r["coupling"] + " (the reference)", "–", "–",
+                            "–", "–", "–",
+                            g(r["pressure_solutions_per_step"]),
+                            g(r["cpu_ms_per_step"])]
         else:
-            cells = [r["state"], edits(r), g(r["dt"]), steps(r),
-                     coupling(r), g(r["l2_u_grains"]), g(r["l2_u_air"]),
-                     g(r["l2_p_base"]),
-                     f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
-                     f"{g(r.get('min_p_grains'))} "
-                     f"({g(r.get('min_p_grains_reference'))})",
-                     g(r["pressure_solutions_per_step"]),
-                     f"{g(r['cpu_ms_per_step'])} "
-                     f"({g(r.get('reference_cpu_ms_per_step'))})"]
+            cells = head + [
+                coupling(r), g(r["l2_u_grains"]), g(r["l2_u_air"]),
+                g(r["l2_p_base"]),
+                f"{g(r['max_w_air'])} ({g(r['max_w_air_reference'])})",
+                f"{g(r.get('min_p_grains'))} "
+                f"({g(r.get('min_p_grains_reference'))})",
+                g(r["pressure_solutions_per_step"]),
+                f"{g(r['cpu_ms_per_step'])} "
+                f"({g(r.get('reference_cpu_ms_per_step'))})"]
         lines.append("| " + " | ".join(str(c) for c in cells) + " |")
     return lines
 
