@@ -41,7 +41,8 @@ it, so that a coupling can be judged on a developed flow of a long run.
 replaced).  --edit changes a dictionary of the case (for example
 constant/granularProperties:air.eta=1e-2; system/fvSolution:
 maxAlphaSubCycles=M sets the phases' sub-cycles, nLimiterIter=N their
-limiter's iterations): `states --edit` runs the
+limiter's iterations; system/fvSolution:solvers."(U|UFinal)"={...}
+replaces a solver entry whose name is a regular expression): `states --edit` runs the
 state with it from the start, and `run --edit` runs the candidates and their
 reference with it from that state, so that a change of the model is
 judged against its own converged step.  See bench/README.md.
@@ -377,6 +378,9 @@ def apply_edit(case, dictionary, entry, value):
     name is a regular expression ("alpha.*") that foamDictionary cannot
     scope: M sub-cycles at most, or 0 for the transport in the momentum
     step (nAlphaSubCycles 1); the MULES limiter's iterations."""
+    if dictionary == "system/fvSolution" and entry.startswith("solvers."):
+        replace_solver(case, entry[len("solvers."):], value)
+        return
     if dictionary != "system/fvSolution" or entry not in (
             "maxAlphaSubCycles", "nLimiterIter"):
         set_entry(case, dictionary, entry, value)
@@ -391,6 +395,19 @@ def apply_edit(case, dictionary, entry, value):
          [(r"(?:max|n)AlphaSubCycles\s+\d+;",
            f"maxAlphaSubCycles {value};" if int(value)
            else "nAlphaSubCycles 1;")])
+
+
+def replace_solver(case, key, value):
+    """Replace the whole one-line entry `key { ... }` of fvSolution's solvers
+    by `key value`, for the keys that foamDictionary cannot scope (regular
+    expressions such as "(U|UFinal)" or "pcorr.*", which -set rewrites into
+    an entry of their first match).  value is a dictionary in braces."""
+    if not re.fullmatch(r"\{.*\}", value.strip()):
+        raise ValueError(f"solvers.{key}={value}: not a dictionary in braces")
+    edit(case / "system" / "fvSolution",
+         [(r"^(\s*)" + re.escape(key) + r"\s*\{[^{}\n]*\}\s*$",
+           lambda m: f"{m.group(1)}{key} {value.strip()}")],
+         flags=re.M)
 
 
 def apply_edits(case, edits):

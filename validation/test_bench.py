@@ -161,6 +161,33 @@ def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
         harness.apply_edits(case, ["system/fvSolution:nLimiterIter=0"])
 
 
+def test_harness_edits_replace_a_regex_keyed_solver_entry(tmp_path):
+    """--edit system/fvSolution:solvers."(U|UFinal)"={...} replaces the
+    entry whose name is a regular expression, keeping the others; a key
+    that is not there and a value that is not a dictionary are refused."""
+    import harness
+    case = tmp_path / "case"
+    (case / "system").mkdir(parents=True)
+    fvSolution = case / "system" / "fvSolution"
+    fvSolution.write_text((PROJECT / "tutorials" / "squareDrum" / "system"
+                           / "fvSolution").read_text())
+    harness.apply_edits(case, [
+        'system/fvSolution:solvers."(U|UFinal)"={ solver GAMG; '
+        'smoother GaussSeidel; tolerance 1e-10; relTol 0.1; }'])
+    assert generate.foam_value(fvSolution,
+                               'solvers/"(U|UFinal)"/solver') == "GAMG"
+    assert generate.foam_value(fvSolution,
+                               'solvers/"(U|UFinal)"/relTol') == "0.1"
+    assert generate.foam_value(fvSolution,
+                               'solvers/"pcorr.*"/solver') == "PCG"
+    with pytest.raises(AssertionError, match="not in"):
+        harness.apply_edits(case, [
+            'system/fvSolution:solvers."(V|VFinal)"={ solver GAMG; }'])
+    with pytest.raises(ValueError, match="not a dictionary"):
+        harness.apply_edits(case, [
+            'system/fvSolution:solvers."pcorr.*"=PCG'])
+
+
 def test_profile_shares_leave_out_the_solver_lifetimes(tmp_path):
     """The harness's profile shares: each section's total over the time
     loop's, a section under two parents summed, the linear solvers'
