@@ -398,14 +398,15 @@ def apply_edit(case, dictionary, entry, value):
 
 
 def replace_solver(case, key, value):
-    """Replace the whole one-line entry `key { ... }` of fvSolution's solvers
-    by `key value`, for the keys that foamDictionary cannot scope (regular
-    expressions such as "(U|UFinal)" or "pcorr.*", which -set rewrites into
-    an entry of their first match).  value is a dictionary in braces."""
+    """Replace the entry `key { ... }` (without sub-dictionaries) of
+    fvSolution's solvers by `key value`, for the keys that foamDictionary
+    cannot scope (regular expressions such as "(U|UFinal)" or "pcorr.*",
+    which -set rewrites into an entry of their first match).  value is a
+    dictionary in braces."""
     if not re.fullmatch(r"\{.*\}", value.strip()):
         raise ValueError(f"solvers.{key}={value}: not a dictionary in braces")
     edit(case / "system" / "fvSolution",
-         [(r"^(\s*)" + re.escape(key) + r"\s*\{[^{}\n]*\}\s*$",
+         [(r"^([ \t]*)" + re.escape(key) + r"\s*\{[^{}]*\}",
            lambda m: f"{m.group(1)}{key} {value.strip()}")],
          flags=re.M)
 
