@@ -806,6 +806,9 @@ def drum_entry(case, source, start, end, coupling, edits, rc):
              "edits": list(edits),
              "ranks": len(list(source.glob("processor[0-9]*")))}
     entry.update(log_cost((case / f"log.{SOLVER}").read_text()))
+    shares = profile_shares(case / "processor0")
+    if shares:
+        entry["profile_shares"] = shares
     if rc != 0:
         entry["status"] = f"failed (exit {rc})"
         return entry

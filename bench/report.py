@@ -65,6 +65,17 @@ def machine_lines(results):
     return lines
 
 
+def table_row(cells):
+    """A row of a Markdown table; a | within a cell escaped."""
+    return "| " + " | ".join(re.sub(r"(?<!\\)\|", r"\\|", str(c))
+                             for c in cells) + " |"
+
+
+def edit_list(edits):
+    """The --edit entries of a run, without their dictionaries."""
+    return ", ".join("`" + e.split(":", 1)[-1] + "`" for e in edits)
+
+
 def table(results):
     head = ("| case | solver | cells | ranks | steps | µs/(cell·step) min "
             "| median | ratio vs stock | peak RSS MB | parallel efficiency |")
@@ -202,7 +213,7 @@ def whole_section(results):
         # one line of the table, however long the reason
         status = " ".join(str(r["status"]).replace("|", "/").split())
         cells.append(status if len(status) <= 80 else status[:77] + "...")
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+        lines.append(table_row(cells))
     speedup = whole.get("speedup")
     lines += [
         "",
@@ -238,7 +249,7 @@ def tutorials_section():
                  r.get("cpu_s", "–"), r.get("wall_s", "–"),
                  r.get("to_steady", "–"), r["result"], r["measured"],
                  f"`{r['command']}`"]
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+        lines.append(table_row(cells))
     return lines
 
 
@@ -315,7 +326,7 @@ def whole_chute_section():
                  *outflow_cells(r, ok),
                  g(r.get("date"), "{}"),
                  r["status"]]
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+        lines.append(table_row(cells))
     return lines
 
 
@@ -381,9 +392,8 @@ def whole_drum_section():
                 f"{src['peak_speed_mean']:.3f} / {src['peak_speed_max']:.3f}"
                 f" | {src['lowest_p_grains']:.1f} "
                 f"({src['steps_with_negative_p_grains']}) | |")
-        name = r["coupling"] + (" " + ", ".join(
-            "`" + e.split(":", 1)[-1] + "`" for e in r["edits"])
-            if r["edits"] else "")
+        name = " ".join(filter(None, [r["coupling"],
+                                      edit_list(r["edits"])]))
         cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
                  r["steps"], g(r["cpu_seconds"], "{:.0f}"),
                  *per_second(r["cpu_seconds"], r),
@@ -401,7 +411,7 @@ def whole_drum_section():
         else:
             cells += ["", "", "", ""]
         cells.append(r["status"])
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+        lines.append(table_row(cells))
     return lines
 
 
@@ -440,6 +450,53 @@ def profile_section():
     return lines[:-1]
 
 
+def drum_profile_section():
+    """The time shares of the drum runs made with OpenFOAM's profiling on
+    (bench/harness drum --edit "system/controlDict:profiling={ active
+    true; }"), one column a run, the master rank's profile."""
+    profile = "system/controlDict:profiling={ active true; }"
+    runs = [r for r in coupling_runs("whole_drum")
+            if r.get("profile_shares")]
+    if not runs:
+        return []
+    names = sorted({n for r in runs for n in r["profile_shares"]},
+                   key=lambda n: -max(r["profile_shares"].get(n, 0)
+                                      for r in runs))
+    lines = [
+        "## Where a drum step spends its time",
+        "",
+        "OpenFOAM's profiling of the drum runs of *Whole drum revolutions* "
+        "made with `profiling`, on the master rank: each section's share of "
+        "the time loop, its children included (the linear solvers' own "
+        "sections are left out, as for the chute). Columns: N, the window, "
+        "the coupling and the other edits; then the CPU per step and the "
+        "Krylov iterations and inner iterations per step. Numbers in "
+        "`bench/coupling.json` (`whole_drum`, `profile_shares`).",
+        "",
+        table_row(["section"] + [
+            " ".join(filter(None, [
+                f"N = {r['N']}, {r['start']:g}–{r['end']:g} s, "
+                + r["coupling"],
+                edit_list(e for e in r["edits"] if e != profile)]))
+            for r in runs]),
+        "|---" * (len(runs) + 1) + "|",
+        table_row(["CPU per step [s]"] + [
+            dash_or(r["cpu_seconds"] / r["steps"] if r["steps"] else None,
+                    "{:.3f}") for r in runs]),
+        table_row(["Krylov iterations / step"] + [
+            dash_or(r.get("krylov_iterations_per_step"), "{:.1f}")
+            for r in runs]),
+        table_row(["inner iterations / step"] + [
+            dash_or(r.get("inner_iterations_per_step"), "{:.0f}")
+            for r in runs]),
+    ]
+    for name in names:
+        lines.append(table_row([f"`{name}`"] + [
+            f"{r['profile_shares'][name]:.1%}"
+            if name in r["profile_shares"] else "–" for r in runs]))
+    return lines
+
+
 def spectra_section():
     """Ritz values of the Krylov coupling (bench/harness spectrum)."""
     runs = coupling_runs("krylov_spectra")
@@ -473,7 +530,7 @@ def spectra_section():
             cells = [r["state"], edits, f"{r['dt']:g}", r["preconditioner"],
                      str(r["iterations"]), f"{r['relative_residual']:.2g}",
                      f"{r['ritz_smallest']:.3g}–{r['ritz_largest']:.3g}"]
-        lines.append("| " + " | ".join(cells) + " |")
+        lines.append(table_row(cells))
     return lines
 
 
@@ -506,8 +563,7 @@ def harness_section():
     ]
 
     def edits(r):
-        return ", ".join(
-            "`" + e.split(":", 1)[-1] + "`" for e in r["edits"]) or "–"
+        return edit_list(r["edits"]) or "–"
 
     def steps(r):
         """Steps compared (of the steps run, where they differ)."""
@@ -546,7 +602,7 @@ def harness_section():
                 g(r["pressure_solutions_per_step"]),
                 f"{g(r['cpu_ms_per_step'])} "
                 f"({g(r.get('reference_cpu_ms_per_step'))})"]
-        lines.append("| " + " | ".join(str(c) for c in cells) + " |")
+        lines.append(table_row(cells))
     return lines
 
 
@@ -676,7 +732,7 @@ def write(results, path):
             lines += ["", *section]
     for section in (harness_section(), spectra_section(),
                     whole_chute_section(), profile_section(),
-                    whole_drum_section(),
+                    whole_drum_section(), drum_profile_section(),
                     tutorials_section()):
         if section:
             lines += ["", *section]

@@ -188,6 +188,30 @@ def test_harness_edits_replace_a_regex_keyed_solver_entry(tmp_path):
             'system/fvSolution:solvers."pcorr.*"=PCG'])
 
 
+def test_log_cost_counts_the_krylov_iterations_of_the_window():
+    """log_cost gives the Krylov coupling's iterations and its inner
+    solvers' iterations per step over the steps of the window only, and
+    no such keys for a log without the Krylov coupling."""
+    from granularfoam.foamio import log_cost
+    log = "\n".join([
+        "Time = 1", "Krylov coupling: BFBt, 30 iterations (900 of the inner "
+        "solvers), residual 1 -> 0.1 m/s", "ExecutionTime = 1 s",
+        "Time = 2", "Krylov coupling: CahouetChabard, 10 iterations (100 of "
+        "the inner solvers), residual 1 -> 0.1 m/s",
+        "Pressure coupling: 11 pressure solutions", "ExecutionTime = 3 s",
+        "Time = 3", "Krylov coupling: CahouetChabard, 20 iterations (300 of "
+        "the inner solvers), residual 1 -> 0.1 m/s",
+        "Pressure coupling: 21 pressure solutions", "ExecutionTime = 6 s"])
+    cost = log_cost(log, start=1)
+    assert cost == {"steps": 2, "cpu_seconds": 5.0,
+                    "pressure_solutions_per_step": 16.0,
+                    "krylov_iterations_per_step": 15.0,
+                    "inner_iterations_per_step": 200.0}
+    assert "krylov_iterations_per_step" not in log_cost(
+        "Time = 1\nPressure coupling: 20 pressure solutions\n"
+        "ExecutionTime = 1 s")
+
+
 def test_profile_shares_leave_out_the_solver_lifetimes(tmp_path):
     """The harness's profile shares: each section's total over the time
     loop's, a section under two parents summed, the linear solvers'
@@ -232,6 +256,31 @@ def test_drum_rows_give_the_cost_per_simulated_second(monkeypatch):
     assert row == ("| 200 | 70–70.5 | tutorial | 160 | 225 | 450 | 10.0 | "
                    "31.0 |  |  |  |  | ok; part of a revolution, its cost "
                    "alone |")
+
+
+def test_drum_profile_columns_keep_a_pipe_inside_its_cell(monkeypatch):
+    """The drum profile table: a column a profiled run, headed by its
+    edits without the profiling one, its sections' shares; the | of a
+    regex-keyed solver edit escaped so that the row keeps its cells."""
+    run = {"source": "/runs/N200", "N": 200, "start": 70.0, "end": 70.1,
+           "coupling": "tutorial",
+           "edits": ["system/controlDict:profiling={ active true; }",
+                     'system/fvSolution:solvers."(U|UFinal)"={ relTol 0; }'],
+           "steps": 50, "cpu_seconds": 40.0,
+           "pressure_solutions_per_step": 21.0,
+           "krylov_iterations_per_step": 19.75,
+           "inner_iterations_per_step": 500.0,
+           "profile_shares": {"granular::Krylov": 0.58,
+                              "fvMatrix::solve.pcorr": 0.132},
+           "status": "ok; part of a revolution, its cost alone"}
+    monkeypatch.setattr(report, "coupling_runs", lambda section: [run])
+    lines = report.drum_profile_section()
+    assert lines[4] == ('| section | N = 200, 70–70.1 s, tutorial '
+                        '`solvers."(U\\|UFinal)"={ relTol 0; }` |')
+    assert "| CPU per step [s] | 0.800 |" in lines
+    assert "| Krylov iterations / step | 19.8 |" in lines
+    assert lines[-2:] == ["| `granular::Krylov` | 58.0% |",
+                          "| `fvMatrix::solve.pcorr` | 13.2% |"]
 
 
 @pytest.mark.parametrize("duration", ["0", "10.5"])

@@ -242,6 +242,7 @@ def volumes(case, function="volumes"):
 
 
 _SOLUTIONS = re.compile(r"^Pressure coupling: (\d+) pressure solutions")
+_KRYLOV = re.compile(r"^Krylov coupling: \w+, (\d+) iterations \((\d+) of")
 
 
 def log_cost(text, start=None, end=None):
@@ -250,8 +251,10 @@ def log_cost(text, start=None, end=None):
     (start, end] (all steps by default): the steps' "Time =" lines, the
     last ExecutionTime of those steps less the one before them (None
     without any), the mean of the steps' "Pressure coupling: N pressure
-    solutions" (None without any)."""
+    solutions" (None without any); with the Krylov coupling, also the
+    mean of its iterations and of its inner solvers' iterations a step."""
     steps, solutions, last, before, now = 0, [], None, None, None
+    krylov = []
     for line in text.splitlines():
         if line.startswith("Time = "):
             now = float(line.split()[2])
@@ -270,7 +273,16 @@ def log_cost(text, start=None, end=None):
             m = _SOLUTIONS.match(line)
             if m:
                 solutions.append(int(m.group(1)))
-    return {"steps": steps,
+            m = _KRYLOV.match(line)
+            if m:
+                krylov.append((int(m.group(1)), int(m.group(2))))
+    cost = {"steps": steps,
             "cpu_seconds": None if last is None else last - (before or 0.0),
             "pressure_solutions_per_step":
                 sum(solutions) / len(solutions) if solutions else None}
+    if krylov:
+        cost["krylov_iterations_per_step"] = \
+            sum(k for k, _ in krylov) / len(krylov)
+        cost["inner_iterations_per_step"] = \
+            sum(i for _, i in krylov) / len(krylov)
+    return cost
