@@ -41,7 +41,8 @@ it, so that a coupling can be judged on a developed flow of a long run.
 replaced).  --edit changes a dictionary of the case (for example
 constant/granularProperties:air.eta=1e-2; system/fvSolution:
 maxAlphaSubCycles=M sets the phases' sub-cycles, nLimiterIter=N their
-limiter's iterations; system/fvSolution:solvers."(U|UFinal)"={...}
+limiter's iterations, nAlphaSubCycles=N a fixed number of sub-cycles;
+system/fvSolution:solvers."(U|UFinal)"={...}
 replaces a solver entry whose name is a regular expression): `states --edit` runs the
 state with it from the start, and `run --edit` runs the candidates and their
 reference with it from that state, so that a change of the model is
@@ -373,28 +374,29 @@ def parse_edit(text):
 
 
 def apply_edit(case, dictionary, entry, value):
-    """Set the entry of a dictionary of case.  maxAlphaSubCycles and
-    nLimiterIter of system/fvSolution go to the phases' solver entry, whose
-    name is a regular expression ("alpha.*") that foamDictionary cannot
-    scope: M sub-cycles at most, or 0 for the transport in the momentum
-    step (nAlphaSubCycles 1); the MULES limiter's iterations."""
+    """Set the entry of a dictionary of case.  maxAlphaSubCycles,
+    nAlphaSubCycles and nLimiterIter of system/fvSolution go to the phases'
+    solver entry, whose name is a regular expression ("alpha.*") that
+    foamDictionary cannot scope: M sub-cycles at most, or 0 for the
+    transport in the momentum step (nAlphaSubCycles 1); N sub-cycles every
+    step; the MULES limiter's iterations."""
     if dictionary == "system/fvSolution" and entry.startswith("solvers."):
         replace_solver(case, entry[len("solvers."):], value)
         return
     if dictionary != "system/fvSolution" or entry not in (
-            "maxAlphaSubCycles", "nLimiterIter"):
+            "maxAlphaSubCycles", "nAlphaSubCycles", "nLimiterIter"):
         set_entry(case, dictionary, entry, value)
         return
+    if entry != "maxAlphaSubCycles" and int(value) < 1:
+        raise ValueError(f"{entry}={value}: not a positive integer")
     if entry == "nLimiterIter":
-        if int(value) < 1:
-            raise ValueError(f"nLimiterIter={value}: not a positive integer")
         edit(case / "system" / "fvSolution",
              [(r"nLimiterIter\s+\d+;", f"nLimiterIter {int(value)};")])
         return
+    if entry == "maxAlphaSubCycles" and int(value) == 0:
+        entry, value = "nAlphaSubCycles", 1
     edit(case / "system" / "fvSolution",
-         [(r"(?:max|n)AlphaSubCycles\s+\d+;",
-           f"maxAlphaSubCycles {value};" if int(value)
-           else "nAlphaSubCycles 1;")])
+         [(r"(?:max|n)AlphaSubCycles\s+\d+;", f"{entry} {int(value)};")])
 
 
 def replace_solver(case, key, value):
