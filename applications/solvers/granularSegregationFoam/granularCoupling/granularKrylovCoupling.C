@@ -193,7 +193,7 @@ Foam::granularKrylovCoupling::granularKrylovCoupling
 )
 :
     pimple_(pimple),
-    preconditioner_(preconditioner::BFBt),
+    preconditioner_(preconditioner::CahouetChabard),
     tolerance_(1e-2),
     maxIter_(20),
     innerRelTol_(0.01),
@@ -223,7 +223,7 @@ void Foam::granularKrylovCoupling::read()
 
     preconditioner_ = preconditionerNames.getOrDefault
     (
-        "preconditioner", dict, preconditioner::BFBt
+        "preconditioner", dict, preconditioner::CahouetChabard
     );
 
     tolerance_ = dict.getOrDefault<scalar>("tolerance", 1e-2);
