@@ -179,6 +179,30 @@ def test_restart(foam_env, which):
     assert max(checked.values()) < 1e-10, checked
 
 
+def test_outer_iterations_transport_every_phase_from_the_step_start(
+        foam_env):
+    """Picard iterations (nOuterCorrectors 2, (4.7)) with the transport in
+    fixed sub-cycles (nAlphaSubCycles 3) on the turning drum: each outer
+    iteration transports every phase from the start of the step, so that
+    every phase's volume stays constant to 1e-10 (relative) and the
+    fractions within [-1e-10, 1 + 1e-10]; a phase transported on from the
+    previous iteration's end would move the grains twice a step."""
+    case = small_drum(
+        f"{HERE}/outer-iterations", n=12, end_time="0.1", delta_t="5e-3",
+        prepare=lambda c: edit(c / "system" / "fvSolution", [
+            (r"nOuterCorrectors\s+\d+;", "nOuterCorrectors 2;"),
+            (r"\b(?:max|n)AlphaSubCycles \d+;", "nAlphaSubCycles 3;")]))
+    log = foam_output(case, "granularSegregationFoam")[0]
+    assert len(re.findall(r"^PIMPLE: iteration 2$", log, re.M)) == 20
+    v = post.volumes(case)
+    assert v["t"][-1] == pytest.approx(0.1), v["t"][-1]
+    for phase in ("air", "small", "large"):
+        drift = np.max(np.abs(v[phase] / v[phase][0] - 1))
+        assert drift < 1e-10, (phase, drift)
+    lo, hi = post.bounds(case)
+    assert lo > -1e-10 and hi < 1 + 1e-10, (lo, hi)
+
+
 @pytest.fixture(scope="module")
 def drum_run(foam_env):
     """A 10 x 10 drum run to 0.2 s with writes at 0.1 and 0.2 s (moving

@@ -544,19 +544,36 @@ void Foam::granularTransport::solve(const label nSub)
     }
     const dimensionedScalar totalDeltaT = runTime.deltaT();
 
-    for
-    (
-        subCycle<volScalarField> alphaSubCycle(phases_.alphas()[0], nSub);
-        !(++alphaSubCycle).end();
-    )
+    // Every phase keeps the old time of the step through the sub-cycles
+    // (subCycle<> keeps only that of the field it is given): a later outer
+    // iteration then transports each phase from the start of the step
+    // again, not on from where the previous iteration left it
+    PtrList<subCycleField<volScalarField>> oldTimes(phases_.size());
+    forAll(oldTimes, i)
     {
-        step(alphaSubCycle.index() == nSub);
-        rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
-        forAll(alphaPhiSums, i)
-        {
-            alphaPhiSums[i] += (runTime.deltaT()/totalDeltaT)*alphaPhis[i];
-        }
+        oldTimes.set
+        (
+            i,
+            new subCycleField<volScalarField>(phases_.alphas()[i])
+        );
     }
+    {
+        subCycleTime subTime(const_cast<Time&>(runTime), nSub);
+        forAll(oldTimes, i)
+        {
+            oldTimes[i].updateTimeIndex();
+        }
+        while (!(++subTime).end())
+        {
+            step(subTime.index() == nSub);
+            rhoPhiSum += (runTime.deltaT()/totalDeltaT)*rhoPhi_;
+            forAll(alphaPhiSums, i)
+            {
+                alphaPhiSums[i] +=
+                    (runTime.deltaT()/totalDeltaT)*alphaPhis[i];
+            }
+        }
+    }   // the time of the step back before the old times (oldTimes' end)
     rhoPhi_ = rhoPhiSum;
     forAll(alphaPhiSums, i)
     {
