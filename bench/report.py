@@ -481,7 +481,8 @@ def drum_profile_section():
             for r in runs]),
         "|---" * (len(runs) + 1) + "|",
         table_row(["CPU per step [s]"] + [
-            dash_or(r["cpu_seconds"] / r["steps"] if r["steps"] else None,
+            dash_or(r["cpu_seconds"] / r["steps"]
+                    if r["steps"] and r["cpu_seconds"] is not None else None,
                     "{:.3f}") for r in runs]),
         table_row(["Krylov iterations / step"] + [
             dash_or(r.get("krylov_iterations_per_step"), "{:.1f}")

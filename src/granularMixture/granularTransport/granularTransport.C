@@ -573,7 +573,8 @@ void Foam::granularTransport::solve(const label nSub)
                     (runTime.deltaT()/totalDeltaT)*alphaPhis[i];
             }
         }
-    }   // the time of the step back before the old times (oldTimes' end)
+    }   // subTime ends first: oldTimes restore the old times at the
+        // step's time index
     rhoPhi_ = rhoPhiSum;
     forAll(alphaPhiSums, i)
     {
