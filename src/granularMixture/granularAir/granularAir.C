@@ -38,7 +38,11 @@ void Foam::granularAir::readAir
     rho_ = granularInput::readPositive(dict, "rho", dimDensity);
     eta_ = granularInput::readPositive(dict, "eta", dimPressure*dimTime);
     sharpening_ =
-        sharpeningNames.getOrDefault("sharpening", dict, sharpening::segregation);
+        granularInput::readEnum
+        (
+            dict, "sharpening",
+            sharpeningNames, sharpening::segregation
+        );
 
     f_ = dimensionedScalar(dimVelocity, Zero);
     e_ = Zero;

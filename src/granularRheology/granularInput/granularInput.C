@@ -207,6 +207,27 @@ Foam::word Foam::granularInput::readVectorOrWord
 }
 
 
+Foam::word Foam::granularInput::readWord
+(
+    const dictionary& dict,
+    const word& keyword,
+    const wordList& words,
+    const word& deflt
+)
+{
+    const word value(dict.getOrDefault<word>(keyword, deflt));
+    if (!words.found(value))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Invalid value of keyword '" << keyword << "' in dictionary "
+            << dict.name() << ": " << keyword << " = " << value
+            << " (one of " << flatOutput(words) << ")" << nl
+            << exit(FatalIOError);
+    }
+    return value;
+}
+
+
 const Foam::dictionary& Foam::granularInput::coeffsDict
 (
     const dictionary& dict,

@@ -39,9 +39,10 @@ Foam::granularRheology::granularRheology(const dictionary& dict)
     ),
     rule_
     (
-        mixtureRuleNames.getOrDefault
+        granularInput::readEnum
         (
-            "mixtureRule", dict, mixtureRule::weightedFriction
+            dict, "mixtureRule",
+            mixtureRuleNames, mixtureRule::weightedFriction
         )
     )
 {

@@ -74,11 +74,10 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
 
     // Too few PISO correctors for the implicit stress (class description)
     const bool implicitStress =
-        viscousStressNames.getOrDefault
+        granularInput::readEnum
         (
-            "viscousStress",
-            pimple_.dict(),
-            viscousStress::explicitStress
+            pimple_.dict(), "viscousStress",
+            viscousStressNames, viscousStress::explicitStress
         )
      == viscousStress::implicitStress;
     if (implicitStress && !Krylov() && pimple_.nCorrPISO() < 4)
@@ -107,9 +106,10 @@ Foam::granularCoupling::viscousStress
 Foam::granularCoupling::readViscousStress(const pimpleControl& pimple)
 {
     const dictionary& dict = pimple.dict();
-    const viscousStress v = viscousStressNames.getOrDefault
+    const viscousStress v = granularInput::readEnum
     (
-        "viscousStress", dict, viscousStress::explicitStress
+        dict, "viscousStress",
+        viscousStressNames, viscousStress::explicitStress
     );
     if (v == viscousStress::implicitStress && !pimple.momentumPredictor())
     {
@@ -135,14 +135,14 @@ void Foam::granularCoupling::read()
 {
     const dictionary& dict = pimple_.dict();
 
-    coupling_ = pressureCouplingNames.getOrDefault
+    coupling_ = granularInput::readEnum
     (
-        "pressureCoupling", dict, pressureCoupling::PISO
+        dict, "pressureCoupling", pressureCouplingNames, pressureCoupling::PISO
     );
 
-    transpose_ = transposeStressNames.getOrDefault
+    transpose_ = granularInput::readEnum
     (
-        "transposeStress", dict, transposeStress::full
+        dict, "transposeStress", transposeStressNames, transposeStress::full
     );
 
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);

@@ -221,9 +221,10 @@ void Foam::granularKrylovCoupling::read()
       : pimpleDict.subOrEmptyDict("Krylov")
     );
 
-    preconditioner_ = preconditionerNames.getOrDefault
+    preconditioner_ = granularInput::readEnum
     (
-        "preconditioner", dict, preconditioner::CahouetChabard
+        dict, "preconditioner",
+        preconditionerNames, preconditioner::CahouetChabard
     );
 
     tolerance_ = dict.getOrDefault<scalar>("tolerance", 1e-2);
