@@ -142,9 +142,22 @@ def _drum_krylov(dest):
                           case / "system" / "fvSolution", KRYLOV))
 
 
+def _drum_krylov_mid_step(dest):
+    """_drum_krylov with the phases transported with the flux at the middle
+    of the step (transportFlux midStep: the flux of the previous step's
+    start is read at the restart)."""
+    return small_drum(dest, n=12, end_time="0.4", write_interval="0.1",
+                      delta_t="5e-3", adjust=True, controls=FULL_PRECISION,
+                      prepare=lambda case: edit(
+                          case / "system" / "fvSolution", KRYLOV + [
+                              (r"maxAlphaSubCycles 5;",
+                               "maxAlphaSubCycles 5; transportFlux midStep;")]))
+
+
 # What the solver reads at a restart; the other fields it writes (I, dbar,
 # shearRate, ...) are recomputed from these
-STATE = {"U", "Uf", "p", "p_rgh", "phi", "rAU", "meshPhi"} | set(PHASES)
+STATE = {"U", "Uf", "p", "p_rgh", "phi", "rAU", "meshPhi",
+         "phiStepStart"} | set(PHASES)
 
 
 # name: (make, dictionary with endTime, half, end)
@@ -157,6 +170,8 @@ RESTARTS = {
                         "0.2", "0.4"),
     "drum-krylov-adjustable": (_drum_krylov, "system/drumParameters",
                                "0.2", "0.4"),
+    "drum-krylov-mid-step": (_drum_krylov_mid_step, "system/drumParameters",
+                             "0.2", "0.4"),
 }
 
 
@@ -168,30 +183,38 @@ def test_restart(foam_env, which):
     uninterrupted run's to 1e-10 of its largest value (fields written at 17
     digits), in open domains (the layer with the explicit and the implicit
     stress, the column) and in the turning drum, with fixed and adjustable
-    steps, and with the Krylov coupling and the adjustable step.  phi is left out: in one column its values are round-off
+    steps, and with the Krylov coupling and the adjustable step (the
+    phases transported with the flux at the start of the step and at its
+    middle).  phi is left out: in one column its values are round-off
     (1e-20 m^3/s), whose relative difference means nothing."""
     make, end_file, half, end = RESTARTS[which]
     whole, split = _restart_pair(make, which, end_file, half, end)
     diff = _max_relative_difference(whole, split, end)
     write_results(RESULTS / HERE, f"restart-{which}", diff)
     assert {"U", "p", "p_rgh", "alpha.air", "alpha.small"} <= set(diff), diff
+    # The start of the step's flux is written when midStep uses it
+    assert ("phiStepStart" in diff) == ("mid-step" in which), diff
     checked = {k: v for k, v in diff.items() if k in STATE - {"phi"}}
     assert max(checked.values()) < 1e-10, checked
 
 
+@pytest.mark.parametrize("flux", ["startOfStep", "midStep"])
 def test_outer_iterations_transport_every_phase_from_the_step_start(
-        foam_env):
+        foam_env, flux):
     """Picard iterations (nOuterCorrectors 2, (4.7)) with the transport in
-    fixed sub-cycles (nAlphaSubCycles 3) on the turning drum: each outer
+    fixed sub-cycles (nAlphaSubCycles 3) on the turning drum, with the flux
+    of the step's start and of its middle (transportFlux): each outer
     iteration transports every phase from the start of the step, so that
     every phase's volume stays constant to 1e-10 (relative) and the
     fractions within [-1e-10, 1 + 1e-10]; a phase transported on from the
     previous iteration's end would move the grains twice a step."""
     case = small_drum(
-        f"{HERE}/outer-iterations", n=12, end_time="0.1", delta_t="5e-3",
+        f"{HERE}/outer-iterations-{flux}", n=12, end_time="0.1",
+        delta_t="5e-3",
         prepare=lambda c: edit(c / "system" / "fvSolution", [
             (r"nOuterCorrectors\s+\d+;", "nOuterCorrectors 2;"),
-            (r"\b(?:max|n)AlphaSubCycles \d+;", "nAlphaSubCycles 3;")]))
+            (r"\b(?:max|n)AlphaSubCycles \d+;",
+             f"nAlphaSubCycles 3; transportFlux {flux};")]))
     log = foam_output(case, "granularSegregationFoam")[0]
     assert len(re.findall(r"^PIMPLE: iteration 2$", log, re.M)) == 20
     v = post.volumes(case)

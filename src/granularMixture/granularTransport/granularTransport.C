@@ -19,7 +19,79 @@
 #include "profiling.H"
 #include "syncTools.H"
 
+// * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * //
+
+const Foam::Enum<Foam::granularTransport::stepFlux>
+Foam::granularTransport::stepFluxNames
+({
+    { stepFlux::startOfStep, "startOfStep" },
+    { stepFlux::midStep, "midStep" },
+});
+
+
 // * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * * //
+
+void Foam::granularTransport::updateStepFlux()
+{
+    const dictionary& dict = mesh_.solverDict("alpha");
+    midStep_ =
+        granularInput::readEnum
+        (
+            dict, "transportFlux",
+            stepFluxNames, stepFlux::startOfStep
+        )
+     == stepFlux::midStep;
+
+    if (midStep_ && (mesh_.topoChanging() || mesh_.moving()))
+    {
+        const bool volumeChange =
+            mesh_.topoChanging()
+         || gMax(mag(1 - mesh_.V0().field()/mesh_.V().field())) > 1e-12;
+        if (volumeChange)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Invalid value in dictionary " << dict.name()
+                << ": transportFlux = midStep on a mesh whose cell volumes"
+                << " change (the combination of the fluxes of two steps is"
+                << " then not divergence-free): use startOfStep" << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    const Time& runTime = mesh_.time();
+    const label timeIndex = runTime.timeIndex();
+    if (timeIndex != startTimeIndex_)
+    {
+        // The first transport of the step: from the fluxes at the starts of
+        // the previous step (phiStart_) and of this one (phi_), linear in
+        // time, at the middle of this step
+        if (midStep_)
+        {
+            if (startTimeIndex_ == timeIndex - 1)
+            {
+                const scalar theta =
+                    0.5*runTime.deltaTValue()/runTime.deltaT0Value();
+                phiStep_ = phi_ + theta*(phi_ - phiStart_);
+            }
+            else
+            {
+                phiStep_ = phi_;
+            }
+        }
+        phiStart_ = phi_;
+        startTimeIndex_ = timeIndex;
+    }
+    else if (midStep_)
+    {
+        // A later outer iteration: the mean of the step's start and the
+        // previous iteration's end
+        phiStep_ = 0.5*(phiStart_ + phi_);
+    }
+
+    phiStart_.writeOpt() =
+        midStep_ ? IOobject::AUTO_WRITE : IOobject::NO_WRITE;
+}
+
 
 Foam::tmp<Foam::scalarField> Foam::granularTransport::explicitUpdate
 (
@@ -218,7 +290,7 @@ void Foam::granularTransport::fluxes
             new surfaceScalarField
             (
                 "phiAlpha." + alphas[i].name(),
-                fvc::flux(phi_, alphas[i], alphaScheme)
+                fvc::flux(stepPhi(), alphas[i], alphaScheme)
             )
         );
     }
@@ -239,7 +311,7 @@ void Foam::granularTransport::fluxes
     PtrList<surfaceScalarField> phirs;
     pairFluxes_.relativeFluxes
     (
-        alphas, gravity_.unit(), air_, phi_, pairs, phirs
+        alphas, gravity_.unit(), air_, stepPhi(), pairs, phirs
     );
     pairFluxes_.add(alphas, pairs, phirs, alphaPhis, &relPhis);
     if (rate)
@@ -267,7 +339,7 @@ void Foam::granularTransport::limit
             1.0/mesh_.time().deltaTValue(),
             geometricOneField(),
             alphas[i],
-            phi_,
+            stepPhi(),
             alphaPhis[i],
             zeroField(),
             zeroField(),
@@ -362,7 +434,7 @@ void Foam::granularTransport::step(const bool last)
             i,
             new surfaceScalarField
             (
-                upwind<scalar>(mesh_, phi_).flux(phases_[i])
+                upwind<scalar>(mesh_, stepPhi()).flux(phases_[i])
             )
         );
     }
@@ -403,6 +475,24 @@ Foam::granularTransport::granularTransport
     air_(air),
     gravity_(gravity),
     rheology_(rheology),
+    phiStart_
+    (
+        IOobject
+        (
+            "phiStepStart",
+            mesh_.time().timeName(),
+            mesh_,
+            IOobject::READ_IF_PRESENT,
+            IOobject::NO_WRITE
+        ),
+        phi
+    ),
+    startTimeIndex_
+    (
+        phiStart_.headerOk() ? mesh_.time().timeIndex() : -1
+    ),
+    phiStep_("phiStep", phi),
+    midStep_(false),
     rhoPhi_
     (
         IOobject
@@ -508,6 +598,7 @@ Foam::label Foam::granularTransport::nSubCycles(const scalar transportCo) const
 
 void Foam::granularTransport::solve(const label nSub)
 {
+    updateStepFlux();
     pairwiseFluxSum_.value() = 0;
     limitedFluxSum_.value() = 0;
     if (nSub <= 1)
