@@ -41,7 +41,8 @@ it, so that a coupling can be judged on a developed flow of a long run.
 replaced).  --edit changes a dictionary of the case (for example
 constant/granularProperties:air.eta=1e-2; system/fvSolution:
 maxAlphaSubCycles=M sets the phases' sub-cycles, nLimiterIter=N their
-limiter's iterations, nAlphaSubCycles=N a fixed number of sub-cycles;
+limiter's iterations, nAlphaSubCycles=N a fixed number of sub-cycles,
+transportFlux=midStep the flux they are transported with;
 system/fvSolution:solvers."(U|UFinal)"={...}
 replaces a solver entry whose name is a regular expression): `states --edit` runs the
 state with it from the start, and `run --edit` runs the candidates and their
@@ -375,27 +376,40 @@ def parse_edit(text):
 
 def apply_edit(case, dictionary, entry, value):
     """Set the entry of a dictionary of case.  maxAlphaSubCycles,
-    nAlphaSubCycles and nLimiterIter of system/fvSolution go to the phases'
-    solver entry, whose name is a regular expression ("alpha.*") that
-    foamDictionary cannot scope: M sub-cycles at most, or 0 for the
-    transport in the momentum step (nAlphaSubCycles 1); N sub-cycles every
-    step; the MULES limiter's iterations."""
+    nAlphaSubCycles, nLimiterIter and transportFlux of system/fvSolution go
+    to the phases' solver entry, whose name is a regular expression
+    ("alpha.*") that foamDictionary cannot scope: M sub-cycles at most, or 0
+    for the transport in the momentum step (nAlphaSubCycles 1); N
+    sub-cycles every step; the MULES limiter's iterations; the flux the
+    phases are transported with (a word the solver checks)."""
     if dictionary == "system/fvSolution" and entry.startswith("solvers."):
         replace_solver(case, entry[len("solvers."):], value)
         return
     if dictionary != "system/fvSolution" or entry not in (
-            "maxAlphaSubCycles", "nAlphaSubCycles", "nLimiterIter"):
+            "maxAlphaSubCycles", "nAlphaSubCycles", "nLimiterIter",
+            "transportFlux"):
         set_entry(case, dictionary, entry, value)
+        return
+    fvSolution = case / "system" / "fvSolution"
+    if entry == "transportFlux":
+        if not re.fullmatch(r"\w+", value):
+            raise ValueError(f"{entry}={value}: not a word")
+        if re.search(r"transportFlux\s+\w+;", fvSolution.read_text()):
+            edit(fvSolution, [(r"transportFlux\s+\w+;",
+                               f"transportFlux {value};")])
+        else:
+            edit(fvSolution, [(r"((?:max|n)AlphaSubCycles\s+\d+;)",
+                               rf"\1 transportFlux {value};")])
         return
     if entry != "maxAlphaSubCycles" and int(value) < 1:
         raise ValueError(f"{entry}={value}: not a positive integer")
     if entry == "nLimiterIter":
-        edit(case / "system" / "fvSolution",
+        edit(fvSolution,
              [(r"nLimiterIter\s+\d+;", f"nLimiterIter {int(value)};")])
         return
     if entry == "maxAlphaSubCycles" and int(value) == 0:
         entry, value = "nAlphaSubCycles", 1
-    edit(case / "system" / "fvSolution",
+    edit(fvSolution,
          [(r"(?:max|n)AlphaSubCycles\s+\d+;", f"{entry} {int(value)};")])
 
 

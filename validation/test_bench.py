@@ -139,9 +139,10 @@ def test_whole_run_status_keeps_to_one_table_row():
 
 
 def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
-    """--edit system/fvSolution:nLimiterIter=N, maxAlphaSubCycles=M and
-    nAlphaSubCycles=N change the phases' solver entry ("alpha.*"), which
-    foamDictionary cannot scope; a count below 1 is refused."""
+    """--edit system/fvSolution:nLimiterIter=N, maxAlphaSubCycles=M,
+    nAlphaSubCycles=N and transportFlux=W change the phases' solver entry
+    ("alpha.*"), which foamDictionary cannot scope; a count below 1 is
+    refused."""
     import harness
     case = tmp_path / "case"
     (case / "system").mkdir(parents=True)
@@ -160,6 +161,12 @@ def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
     harness.apply_edits(case, ["system/fvSolution:nAlphaSubCycles=4"])
     assert generate.foam_value(fvSolution,
                                'solvers/"alpha.*"/nAlphaSubCycles') == "4"
+    for flux in ("midStep", "startOfStep"):
+        harness.apply_edits(case, [f"system/fvSolution:transportFlux={flux}"])
+        assert generate.foam_value(
+            fvSolution, 'solvers/"alpha.*"/transportFlux') == flux
+        assert generate.foam_value(
+            fvSolution, 'solvers/"alpha.*"/nAlphaSubCycles') == "4"
     with pytest.raises(ValueError, match="nLimiterIter=0"):
         harness.apply_edits(case, ["system/fvSolution:nLimiterIter=0"])
     with pytest.raises(ValueError, match="nAlphaSubCycles=0"):
