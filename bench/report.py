@@ -330,10 +330,42 @@ def whole_chute_section():
     return lines
 
 
+def drum_coupling(r):
+    """The coupling of drum revolution r as the table names it: the
+    harness's coupling name, or for the source case's own fvSolution
+    (harness.TUTORIAL_NAME) the source's coupling."""
+    import harness
+    if r["coupling"] == harness.TUTORIAL_NAME:
+        return f"the source's fvSolution ({r['source_coupling']})"
+    return r["coupling"]
+
+
+def is_drum_reference(q):
+    """Whether the drum revolution q is a reference revolution
+    (harness.DRUM_REFERENCE) that ended well."""
+    import harness
+    name, edits = harness.DRUM_REFERENCE
+    return (q["coupling"] == name and sorted(q["edits"]) == sorted(edits)
+            and q["status"].startswith("ok") and "J_end" in q)
+
+
+def drum_reference(runs, r):
+    """The reference revolution of r's source and window among runs; None
+    if there is none, and for the reference itself."""
+    for q in runs:
+        if (q is not r and is_drum_reference(q)
+                and (q["source"], q["start"], q["end"])
+                == (r["source"], r["start"], r["end"])):
+            return q
+    return None
+
+
 def whole_drum_section():
     """One drum revolution from a written time, by coupling (bench/harness
-    drum), against the run it started from."""
+    drum), against the run it started from or, from a state, against the
+    reference revolution."""
     from granularfoam.post import drum
+    import harness
     runs = coupling_runs("whole_drum")
     if not runs:
         return []
@@ -350,14 +382,21 @@ def whole_drum_section():
         "master rank's, per simulated second, and projected to the eight "
         "revolutions of the tutorial (80 s) on as many cores as ranks. A "
         "row of part of a revolution (`--duration`) gives that cost alone. "
+        "From a state (not a run) the differences and the speed-up are "
+        "against the reference revolution from the same state: "
+        f"`{harness.DRUM_REFERENCE[0]}` with "
+        f"{edit_list(list(harness.DRUM_REFERENCE[1]))} (the coupling "
+        "converged at the chute reference's step, the phases transported "
+        "in the momentum step). "
         "Numbers in `bench/coupling.json` (`whole_drum`).",
         "",
         "| N | revolution [s] | coupling | steps | CPU [s] | CPU / "
-        "simulated s | 8 revolutions, projected [h] | pressure "
+        "simulated s | 8 revolutions, projected [h] | speed-up vs the "
+        "reference | pressure "
         "solutions / step | J at the end | surface angle, mean [deg] | "
         "peak speed, mean / max [m/s] | lowest p grains [Pa] (steps < 0) "
         "| status |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
 
     g = dash_or
@@ -369,9 +408,16 @@ def whole_drum_section():
         rate = cpu / (r["end"] - r["start"])
         return [f"{rate:.0f}", f"{rate * 8 * drum.PERIOD / 3600:.1f}"]
 
-    def vs(r, key):
+    def vs(r, key, ref):
         d = r.get(f"{key}_vs_source")
+        if d is None and ref is not None:
+            d = r[key] / ref[key] - 1
         return "" if d is None else f" ({d:+.1%})"
+
+    def speed_up(r, ref):
+        if ref is None or not r.get("cpu_seconds"):
+            return "1" if is_drum_reference(r) else ""
+        return f"{ref['cpu_seconds'] / r['cpu_seconds']:.1f}"
 
     sources = {}
     for r in sorted(runs, key=lambda r: (r["N"], r["start"],
@@ -386,26 +432,29 @@ def whole_drum_section():
                 f"{src['window_steps']} | "
                 f"{src['window_cpu_seconds']:.0f} | "
                 + " | ".join(per_second(src['window_cpu_seconds'], r))
-                + " | | "
+                + " | | | "
                 f"{g(src['J_end'], '{:.4f}')} | "
                 f"{src['surface_angle_mean_deg']:.2f} | "
                 f"{src['peak_speed_mean']:.3f} / {src['peak_speed_max']:.3f}"
                 f" | {src['lowest_p_grains']:.1f} "
                 f"({src['steps_with_negative_p_grains']}) | |")
-        name = " ".join(filter(None, [r["coupling"],
+        name = " ".join(filter(None, [drum_coupling(r),
                                       edit_list(r["edits"])]))
+        ref = drum_reference(runs, r) if not src else None
         cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
                  r["steps"], g(r["cpu_seconds"], "{:.0f}"),
                  *per_second(r["cpu_seconds"], r),
+                 speed_up(r, ref) if ok and "J_end" in r else "",
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
         if ok and "J_end" in r:
             cells += [
-                g(r["J_end"], "{:.4f}") + vs(r, "J_end"),
+                g(r["J_end"], "{:.4f}") + vs(r, "J_end", ref),
                 f"{r['surface_angle_mean_deg']:.2f}"
-                + vs(r, "surface_angle_mean_deg"),
-                f"{r['peak_speed_mean']:.3f}{vs(r, 'peak_speed_mean')}"
+                + vs(r, "surface_angle_mean_deg", ref),
+                f"{r['peak_speed_mean']:.3f}"
+                f"{vs(r, 'peak_speed_mean', ref)}"
                 f" / {r['peak_speed_max']:.3f}"
-                f"{vs(r, 'peak_speed_max')}",
+                f"{vs(r, 'peak_speed_max', ref)}",
                 f"{r['lowest_p_grains']:.1f} "
                 f"({r['steps_with_negative_p_grains']})"]
         else:
@@ -476,7 +525,7 @@ def drum_profile_section():
         table_row(["section"] + [
             " ".join(filter(None, [
                 f"N = {r['N']}, {r['start']:g}–{r['end']:g} s, "
-                + r["coupling"],
+                + drum_coupling(r),
                 edit_list(e for e in r["edits"] if e != profile)]))
             for r in runs]),
         "|---" * (len(runs) + 1) + "|",

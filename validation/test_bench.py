@@ -265,9 +265,51 @@ def test_drum_rows_give_the_cost_per_simulated_second(monkeypatch):
                         lambda section: [partial])
     lines = report.whole_drum_section()
     row = next(x for x in lines if x.startswith("| 200 "))
-    assert row == ("| 200 | 70–70.5 | tutorial | 160 | 225 | 450 | 10.0 | "
+    assert row == ("| 200 | 70–70.5 | the source's fvSolution (Krylov "
+                   "CahouetChabard 30) | 160 | 225 | 450 | 10.0 |  | "
                    "31.0 |  |  |  |  | ok; part of a revolution, its cost "
                    "alone |")
+
+
+def test_drum_rows_from_a_state_compare_with_the_reference_revolution(
+        monkeypatch):
+    """From a state (no source run), a revolution's J, surface angle and
+    peak speed are given against the reference revolution
+    (harness.DRUM_REFERENCE) from the same state and window, with its
+    speed-up; the reference's own row says 1; a revolution from another
+    window has neither."""
+    import harness
+    name, edits = harness.DRUM_REFERENCE
+    state = {"source": "/runs/N100M", "N": 100, "start": 70.0, "end": 80.0,
+             "source_coupling": "Krylov BFBt 20", "ranks": 2,
+             "pressure_solutions_per_step": 20.0,
+             "surface_angle_range_deg": [21.0, 25.0],
+             "lowest_p_grains": -20.0, "steps_with_negative_p_grains": 900,
+             "status": "ok; the source is a state, not a run"}
+    ref = dict(state, coupling=name, edits=list(edits), steps=10000,
+               cpu_seconds=2500.0, J_end=0.025,
+               surface_angle_mean_deg=23.5, peak_speed_mean=0.24,
+               peak_speed_max=0.28)
+    run = dict(state, coupling="Krylov-CahouetChabard-20",
+               edits=["system/fvSolution:transportFlux=midStep"],
+               steps=2500, cpu_seconds=500.0, J_end=0.0245,
+               surface_angle_mean_deg=23.5, peak_speed_mean=0.234,
+               peak_speed_max=0.28)
+    other = dict(run, start=60.0, end=70.0)
+    monkeypatch.setattr(report, "coupling_runs",
+                        lambda section: [ref, run, other])
+    rows = {x.split(" | ")[1]: x for x in report.whole_drum_section()
+            if x.startswith("| 100 ") and "transportFlux" in x}
+    assert rows["70–80"] == (
+        "| 100 | 70–80 | Krylov-CahouetChabard-20 `transportFlux=midStep` | "
+        "2500 | 500 | 50 | 1.1 | 5.0 | 20.0 | 0.0245 (-2.0%) | "
+        "23.50 (+0.0%) | 0.234 (-2.5%) / 0.280 (+0.0%) | -20.0 (900) | "
+        "ok; the source is a state, not a run |")
+    assert rows["60–70"].split(" | ")[6:9] == ["1.1", "", "20.0"]
+    assert "0.0245 | " in rows["60–70"]
+    ref_row = next(x for x in report.whole_drum_section()
+                   if f"| {name} " in x)
+    assert ref_row.split(" | ")[7] == "1"
 
 
 def test_drum_profile_columns_keep_a_pipe_inside_its_cell(monkeypatch):
@@ -276,6 +318,7 @@ def test_drum_profile_columns_keep_a_pipe_inside_its_cell(monkeypatch):
     regex-keyed solver edit escaped so that the row keeps its cells."""
     run = {"source": "/runs/N200", "N": 200, "start": 70.0, "end": 70.1,
            "coupling": "tutorial",
+           "source_coupling": "Krylov CahouetChabard 30",
            "edits": ["system/controlDict:profiling={ active true; }",
                      'system/fvSolution:solvers."(U|UFinal)"={ relTol 0; }'],
            "steps": 50, "cpu_seconds": 40.0,
@@ -287,7 +330,8 @@ def test_drum_profile_columns_keep_a_pipe_inside_its_cell(monkeypatch):
            "status": "ok; part of a revolution, its cost alone"}
     monkeypatch.setattr(report, "coupling_runs", lambda section: [run])
     lines = report.drum_profile_section()
-    assert lines[4] == ('| section | N = 200, 70–70.1 s, tutorial '
+    assert lines[4] == ('| section | N = 200, 70–70.1 s, the source\'s '
+                        'fvSolution (Krylov CahouetChabard 30) '
                         '`solvers."(U\\|UFinal)"={ relTol 0; }` |')
     assert "| CPU per step [s] | 0.800 |" in lines
     assert "| Krylov iterations / step | 19.8 |" in lines
