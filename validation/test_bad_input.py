@@ -323,28 +323,31 @@ def test_set_fields_refused(base, tmp_path, name, pattern, replacement,
     out = res.stdout + res.stderr
     assert res.returncode > 0, f"{name}: exit {res.returncode}\n{out[-3000:]}"
     assert "FOAM FATAL IO ERROR" in out, out[-3000:]
-    message = "\n".join(
-        line for line in out[out.index("FOAM FATAL"):].splitlines()
-        if not line.strip().startswith(("From ", "in file ")))
+    message = _fatal_message(out)
     missing = [w for w in words if w not in message]
     assert not missing, f"{name}: {missing} not in\n{message[:2000]}"
     after = {p.name: p.read_bytes() for p in (case / "0").iterdir()}
     assert after == before, f"{name}: files of 0 changed"
 
 
+def _fatal_message(out):
+    """OpenFOAM's fatal message in out, without the function signature and
+    source file it prints after it (which name types such as the
+    enumerations, so a keyword found there is not the message's)."""
+    return "\n".join(
+        line for line in out[out.index("FOAM FATAL"):].splitlines()
+        if not line.strip().startswith(("From ", "in file ")))
+
+
 def _assert_refused(case, name, words, before):
     """The solver exits non-zero with a FOAM FATAL message holding every
-    word (in the message itself, not in the function signature OpenFOAM
-    prints after it, which names types such as the enumerations), no core
-    dump, and writes no field."""
+    word (_fatal_message), no core dump, and writes no field."""
     rc, out = _solve(case)
 
     assert rc > 0, f"{name}: exit {rc} (a signal if < 0)\n{out[-3000:]}"
     assert "core dumped" not in out.lower() and "sigsegv" not in out.lower()
     assert "FOAM FATAL" in out, out[-3000:]
-    message = "\n".join(
-        line for line in out[out.index("FOAM FATAL"):].splitlines()
-        if not line.strip().startswith(("From ", "in file ")))
+    message = _fatal_message(out)
     missing = [w for w in words if w not in message]
     assert not missing, f"{name}: {missing} not in\n{message[:2000]}"
     after = {t: sorted(p.name for p in (case / t).iterdir())

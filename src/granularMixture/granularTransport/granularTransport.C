@@ -41,8 +41,14 @@ void Foam::granularTransport::updateStepFlux()
             stepFluxNames, stepFlux::startOfStep
         )
      == stepFlux::midStep;
+    phiStart_.writeOpt() =
+        midStep_ ? IOobject::AUTO_WRITE : IOobject::NO_WRITE;
+    if (!midStep_)
+    {
+        return;
+    }
 
-    if (midStep_ && (mesh_.topoChanging() || mesh_.moving()))
+    if (mesh_.topoChanging() || mesh_.moving())
     {
         const bool volumeChange =
             mesh_.topoChanging()
@@ -65,31 +71,25 @@ void Foam::granularTransport::updateStepFlux()
         // The first transport of the step: from the fluxes at the starts of
         // the previous step (phiStart_) and of this one (phi_), linear in
         // time, at the middle of this step
-        if (midStep_)
+        if (startTimeIndex_ == timeIndex - 1)
         {
-            if (startTimeIndex_ == timeIndex - 1)
-            {
-                const scalar theta =
-                    0.5*runTime.deltaTValue()/runTime.deltaT0Value();
-                phiStep_ = phi_ + theta*(phi_ - phiStart_);
-            }
-            else
-            {
-                phiStep_ = phi_;
-            }
+            const scalar theta =
+                0.5*runTime.deltaTValue()/runTime.deltaT0Value();
+            phiStep_ = phi_ + theta*(phi_ - phiStart_);
+        }
+        else
+        {
+            phiStep_ = phi_;
         }
         phiStart_ = phi_;
         startTimeIndex_ = timeIndex;
     }
-    else if (midStep_)
+    else
     {
         // A later outer iteration: the mean of the step's start and the
         // previous iteration's end
         phiStep_ = 0.5*(phiStart_ + phi_);
     }
-
-    phiStart_.writeOpt() =
-        midStep_ ? IOobject::AUTO_WRITE : IOobject::NO_WRITE;
 }
 
 
