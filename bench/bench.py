@@ -9,8 +9,13 @@ second: the granular solver, explicit, implicit and Krylov, serial, on the
 chute's 155 x 16 mesh over --interval simulated seconds with the time step
 adjusted to the CFL (4.11); then whole runs of the chute tutorial (155 x 40,
 from rest to --whole-end-time) with the reference coupling and with the
-tutorial's own, side by side on two cores (bench/harness's whole_chute).
-Writes bench/results.json and BENCHMARKS.md (report.py).
+tutorial's own, side by side on two cores (bench/harness's whole_chute);
+then, given a written state of the square drum tutorial (--drum-source,
+--drum-start), one revolution from it with the drum's reference coupling
+and with the tutorial's own, one after the other on the state's ranks
+(bench/harness's whole_drum).  --parts runs some of these parts and keeps
+the others' results from bench/results.json.  Writes bench/results.json and
+BENCHMARKS.md (report.py).
 """
 
 import argparse
@@ -62,6 +67,27 @@ WHOLE = {
                  "max_delta_t": None},
 }
 
+# One drum revolution from a written state of the tutorial (tutorials/
+# squareDrum, run as its files say), on the state's ranks: the reference
+# coupling (harness.DRUM_REFERENCE) and the tutorial's own, one after the
+# other; the tutorial's run is refused unless the state's coupling, schemes
+# and time control are the tutorial's
+DRUM = {"reference": harness.DRUM_REFERENCE,
+        "tutorial": (harness.TUTORIAL_NAME, ())}
+DRUM_TUTORIAL = REPO / "tutorials" / "squareDrum"
+DRUM_FILES = ("system/fvSolution", "system/fvSchemes", "system/controlDict")
+DRUM_METRICS = ("J_end", "surface_angle_mean_deg", "peak_speed_mean",
+                "peak_speed_max")
+# The parts of a run and the keys of results.json each writes; a part not
+# run keeps its keys from the results file
+PARTS = {
+    "steps": ("quick", "command", "date", "machine", "software",
+              "settings", "configs", "runs", "summary"),
+    "per-simulated-second": ("per_simulated_second",),
+    "chute": ("whole",),
+    "drum": ("drum",),
+}
+
 EXECUTION = re.compile(
     r"^ExecutionTime = ([-+.0-9eE]+) s\s+ClockTime = ([-+.0-9eE]+) s",
     re.MULTILINE)
@@ -111,6 +137,23 @@ def parse_args(argv):
                         help="end time of the whole chute runs (default "
                              f"{WHOLE_END_TIME}; {QUICK['whole_end_time']} "
                              "with --quick; 0 leaves them out)")
+    parser.add_argument("--drum-source", type=Path, metavar="DIR",
+                        help="a decomposed run of tutorials/squareDrum as "
+                             "its files say (any N): the drum part runs one "
+                             "revolution from its written time --drum-start "
+                             "with the reference coupling and the "
+                             "tutorial's (default: no drum part)")
+    parser.add_argument("--drum-start", type=float, metavar="SECONDS",
+                        help="the written time of --drum-source to start "
+                             "from")
+    parser.add_argument("--drum-duration", type=float, metavar="SECONDS",
+                        help="run this much of the revolution (its cost "
+                             "alone, no accuracy; default a revolution)")
+    parser.add_argument("--parts", nargs="+", choices=list(PARTS),
+                        help="run these parts and keep the others' results "
+                             "from bench/results.json (default: steps, "
+                             "per-simulated-second, chute, and drum with "
+                             "--drum-source)")
     parser.add_argument("--quick", action="store_true",
                         help="develop the harness: the small mesh, "
                              f"{QUICK['steps']} steps, 1 repetition, "
@@ -146,7 +189,60 @@ def parse_args(argv):
     args.ranks = sorted(set(args.ranks))
     if args.ranks[0] != 1:
         parser.error("--ranks needs 1, the reference of the efficiency")
+    if args.parts is None:
+        args.parts = [p for p in PARTS
+                      if p != "drum" or args.drum_source is not None]
+    if "drum" in args.parts:
+        if args.drum_source is None or args.drum_start is None:
+            parser.error("the drum part needs --drum-source DIR and "
+                         "--drum-start SECONDS")
+        problems = drum_source_problems(args.drum_source, args.drum_start)
+        if problems:
+            parser.error(f"--drum-source {args.drum_source}: "
+                         + "; ".join(problems))
+        if args.drum_duration is not None and args.drum_duration <= 0:
+            parser.error("need --drum-duration > 0")
+    elif args.drum_source is not None:
+        parser.error("--drum-source without the drum part in --parts")
+    if set(args.parts) != set(PARTS) and not RESULTS.exists():
+        parser.error(f"--parts {' '.join(args.parts)} keeps the other "
+                     f"parts from {RESULTS.relative_to(REPO)}, which is "
+                     "missing")
     return args
+
+
+def keep_parts(results, kept, parts):
+    """results with the keys of every part not in parts taken from kept
+    (the results file of an earlier run)."""
+    for part, keys in PARTS.items():
+        if part not in parts:
+            results.update({k: kept.get(k) for k in keys})
+    return results
+
+
+def drum_source_problems(source, start):
+    """Why source cannot serve the drum part from its written time start:
+    not a decomposed run with that time, or its coupling, schemes or time
+    control not the tutorial's (then its own coupling is not the
+    tutorial's).  Empty if it can."""
+    source = Path(source)
+    ranks = sorted(source.glob("processor[0-9]*"))
+    if not ranks:
+        return ["no processor directories (a decomposed run of "
+                "tutorials/squareDrum)"]
+    problems = []
+    times = [x.name for x in ranks[0].iterdir()
+             if re.fullmatch(r"[0-9.eE+-]+", x.name)]
+    if not any(abs(float(x) - start) < 1e-6 for x in times):
+        problems.append(f"{ranks[0].name} has no time {start:g}")
+    for name in DRUM_FILES:
+        mine = source / name
+        if not mine.is_file():
+            problems.append(f"no {name}")
+        elif mine.read_bytes() != (DRUM_TUTORIAL / name).read_bytes():
+            problems.append(f"{name} is not the tutorial's "
+                            f"({(DRUM_TUTORIAL / name).relative_to(REPO)})")
+    return problems
 
 
 def command_output(*cmd):
@@ -432,6 +528,40 @@ def run_whole(end_time):
             "settings": WHOLE, "runs": runs, "speedup": speedup}
 
 
+def run_drum(source, start, duration, command):
+    """One revolution (or duration) of the drum from the written time start
+    of source, with the reference coupling and with the tutorial's, one
+    after the other on the source's ranks; the tutorial's CPU time against
+    the reference's and its J, surface angle and peak speed against the
+    reference's."""
+    runs = {}
+    for name, (coupling, edits) in DRUM.items():
+        entry = harness.whole_drum(source, start, coupling, list(edits),
+                                   duration)
+        entry["configuration"] = name
+        cpu = entry.get("cpu_seconds")
+        entry["ms_per_step"] = (1000 * cpu / entry["steps"]
+                                if cpu and entry.get("steps") else None)
+        runs[name] = entry
+        print(f"bench/run: drum, {name}: {entry['status']}, "
+              f"{entry.get('steps')} steps, {cpu} CPU s", flush=True)
+    ref, tut = runs["reference"], runs["tutorial"]
+    speedup = (ref["cpu_seconds"] / tut["cpu_seconds"]
+               if ref.get("cpu_seconds") and tut.get("cpu_seconds")
+               else None)
+    if all("J_end" in r for r in (ref, tut)):
+        for key in DRUM_METRICS:
+            tut[f"{key}_vs_reference"] = tut[key] / ref[key] - 1
+    return {"case": "squareDrum", "N": ref["N"], "ranks": ref["ranks"],
+            "source": str(Path(source).resolve()), "start": start,
+            "end": ref["end"], "settings": {
+                name: {"coupling": c, "edits": list(e)}
+                for name, (c, e) in DRUM.items()},
+            "runs": runs, "speedup": speedup, "command": command,
+            "date": datetime.datetime.now().astimezone().isoformat(
+                timespec="seconds")}
+
+
 def summarise(configs, runs, ranks_used):
     """Min and median over the repetitions, the ratio to stock and the
     parallel efficiency, one row per configuration and rank count."""
@@ -472,9 +602,10 @@ def summarise(configs, runs, ranks_used):
 def main(argv):
     args = parse_args(argv)
     exes = executables()
+    command = shlex.join(["bench/run", *argv])
     results = {
         "quick": args.quick,
-        "command": shlex.join(["bench/run", *argv]),
+        "command": command,
         "date": datetime.datetime.now().astimezone().isoformat(
             timespec="seconds"),
         "machine": machine(),
@@ -492,7 +623,7 @@ def main(argv):
     }
 
     configs = []
-    for nx, nz in args.meshes:
+    for nx, nz in (args.meshes if "steps" in args.parts else []):
         mesh = f"{nx}x{nz}"
         shutil.rmtree(WORK / mesh, ignore_errors=True)
         for case in generate.CASES:
@@ -511,7 +642,7 @@ def main(argv):
                 })
 
     adaptive = []
-    if args.interval > 0:
+    if args.interval > 0 and "per-simulated-second" in args.parts:
         nx, nz = ADAPTIVE["mesh"]
         shutil.rmtree(WORK / "adaptive", ignore_errors=True)
         for solver in ADAPTIVE["solvers"]:
@@ -567,8 +698,16 @@ def main(argv):
                            indent=1))
 
     whole = None
-    if args.whole_end_time > 0:
+    if args.whole_end_time > 0 and "chute" in args.parts:
         whole = run_whole(args.whole_end_time)
+        whole.update(command=command, machine=results["machine"],
+                     software=results["software"])
+
+    drum = None
+    if "drum" in args.parts:
+        drum = run_drum(args.drum_source, args.drum_start,
+                        args.drum_duration, command)
+        drum.update(machine=results["machine"], software=results["software"])
 
     for config in configs + adaptive:
         config["dir"] = str(config["dir"].relative_to(REPO))
@@ -597,6 +736,9 @@ def main(argv):
             "speedup": speedup,
         }
     results["whole"] = whole
+    results["drum"] = drum
+    if set(args.parts) != set(PARTS):
+        keep_parts(results, json.loads(RESULTS.read_text()), args.parts)
     RESULTS.write_text(json.dumps(results, indent=1) + "\n")
     report.write(results, MARKDOWN)
     print(f"bench/run: wrote {RESULTS.relative_to(REPO)} and "

@@ -180,7 +180,7 @@ def whole_section(results):
     lines = [
         "## Whole runs: the reference against the tutorial",
         "",
-        f"    {results['command']}",
+        f"    {whole.get('command', results['command'])}",
         "",
         "(the same command as the tables above, after them; "
         "`--whole-end-time 0` leaves this one out). The chute tutorial "
@@ -215,6 +215,76 @@ def whole_section(results):
         cells.append(status if len(status) <= 80 else status[:77] + "...")
         lines.append(table_row(cells))
     speedup = whole.get("speedup")
+    lines += [
+        "",
+        "Speed-up of the tutorial over the reference (CPU): "
+        + (f"**{speedup:.2f}**." if speedup else "—."),
+    ]
+    return lines
+
+
+def drum_section(results):
+    """The drum part of bench/run: one revolution from a written state of
+    the drum tutorial with the reference coupling and with the tutorial's,
+    the tutorial's speed-up and its J, surface angle and peak speed against
+    the reference's."""
+    d = results.get("drum")
+    if not d:
+        return []
+    ref_coupling = d["settings"]["reference"]["coupling"]
+    ref_edits = d["settings"]["reference"]["edits"]
+    lines = [
+        "## Drum revolution: the reference against the tutorial",
+        "",
+        f"    {d['command']}",
+        "",
+        f"({d['date'][:10]}; `--parts drum` runs this part alone.) The "
+        f"square drum tutorial at N = {d['N']} from its written time "
+        f"{d['start']:g} s (`{d['source']}`, a run of "
+        "`tutorials/squareDrum` as its files say) to "
+        f"{d['end']:g} s, on its {d['ranks']} ranks, one run after the "
+        f"other: the reference, `{ref_coupling}` with "
+        f"{edit_list(ref_edits)} (the coupling converged at the chute "
+        "reference's step, the phases transported in the momentum step; "
+        "`bench/harness drum` names it the same way), and the tutorial as "
+        "its files say. J of (7.6) at the end, the surface angle and the "
+        "peak speed over the revolution (the `rotatingDrum` monitor), the "
+        "lowest pressure seen by the rheology in the grains over the "
+        "steps; the tutorial's relative difference from the reference in "
+        "brackets.",
+        "",
+        "| run | steps | CPU [s] | ms per step | pressure solutions / step "
+        "| J at the end | surface angle, mean [deg] | peak speed, mean / "
+        "max [m/s] | lowest p grains [Pa] (steps < 0) | status |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    g = dash_or
+
+    def vs(r, key):
+        d = r.get(f"{key}_vs_reference")
+        return "" if d is None else f" ({d:+.1%})"
+
+    for name in ("reference", "tutorial"):
+        r = d["runs"][name]
+        cells = [name, g(r.get("steps"), "{}"),
+                 g(r.get("cpu_seconds"), "{:.0f}"),
+                 g(r.get("ms_per_step"), "{:.3g}"),
+                 g(r.get("pressure_solutions_per_step"), "{:.1f}")]
+        if "J_end" in r:
+            cells += [
+                f"{r['J_end']:.4f}{vs(r, 'J_end')}",
+                f"{r['surface_angle_mean_deg']:.2f}"
+                f"{vs(r, 'surface_angle_mean_deg')}",
+                f"{r['peak_speed_mean']:.3f}{vs(r, 'peak_speed_mean')} / "
+                f"{r['peak_speed_max']:.3f}{vs(r, 'peak_speed_max')}",
+                f"{r['lowest_p_grains']:.1f} "
+                f"({r['steps_with_negative_p_grains']})"]
+        else:
+            cells += ["", "", "", ""]
+        status = " ".join(str(r["status"]).replace("|", "/").split())
+        cells.append(status if len(status) <= 80 else status[:77] + "...")
+        lines.append(table_row(cells))
+    speedup = d.get("speedup")
     lines += [
         "",
         "Speed-up of the tutorial over the reference (CPU): "
@@ -777,7 +847,8 @@ def write(results, path):
             "a final pressure corrector a step"
             + ("; the time step it allows is in the next table."
                if adaptive else ".")]
-    for section in (adaptive_section(results), whole_section(results)):
+    for section in (adaptive_section(results), whole_section(results),
+                    drum_section(results)):
         if section:
             lines += ["", *section]
     for section in (harness_section(), spectra_section(),

@@ -369,3 +369,119 @@ def test_harness_rows_show_the_references_own_run(monkeypatch):
     assert row == ("| /runs/N150K@30 | – | 0.004 | 10 | "
                    "Krylov-CahouetChabard-200-tol1e-8 (the reference) | "
                    "– | – | – | – | – | 41 | 2.6e+03 |")
+
+
+def test_drum_part_is_the_reference_and_the_tutorial_unchanged():
+    """bench/run's drum part: the reference is the drum's reference
+    revolution of bench/harness drum; the tutorial's run changes nothing
+    of the source's files."""
+    import bench
+    import harness
+    assert bench.DRUM["reference"] == harness.DRUM_REFERENCE
+    coupling, edits = bench.DRUM["tutorial"]
+    assert harness.coupling_settings(coupling) == {} and edits == ()
+
+
+def _drum_state(tmp_path, time="20"):
+    """A stand-in of a decomposed drum run: the tutorial's system files and
+    processor0/<time>."""
+    import bench
+    source = tmp_path / "N100"
+    for name in bench.DRUM_FILES:
+        (source / name).parent.mkdir(parents=True, exist_ok=True)
+        (source / name).write_bytes((bench.DRUM_TUTORIAL / name)
+                                    .read_bytes())
+    (source / "processor0" / time).mkdir(parents=True)
+    return source
+
+
+def test_drum_source_must_be_a_state_of_the_tutorial(tmp_path):
+    """The drum part runs from a decomposed run of the tutorial as its
+    files say, at a time it wrote: another coupling, a missing time or an
+    undecomposed case is refused, naming what is wrong; without a source,
+    --parts drum is refused."""
+    import bench
+    source = _drum_state(tmp_path)
+    assert bench.drum_source_problems(source, 20) == []
+    assert bench.drum_source_problems(source, 30) == [
+        "processor0 has no time 30"]
+    fv = source / "system" / "fvSolution"
+    fv.write_text(fv.read_text().replace("maxIter         20;",
+                                         "maxIter         30;"))
+    problems = bench.drum_source_problems(source, 20)
+    assert problems == ["system/fvSolution is not the tutorial's "
+                        "(tutorials/squareDrum/system/fvSolution)"]
+    assert bench.drum_source_problems(tmp_path, 20)[0].startswith(
+        "no processor directories")
+    with pytest.raises(SystemExit):
+        bench.parse_args(["--parts", "drum"])
+    with pytest.raises(SystemExit):
+        bench.parse_args(["--parts", "drum", "--drum-source", str(source),
+                          "--drum-start", "20"])
+    args = bench.parse_args(["--parts", "drum", "--drum-source",
+                             str(_drum_state(tmp_path / "b")),
+                             "--drum-start", "20"])
+    assert args.parts == ["drum"]
+    assert "drum" not in bench.parse_args([]).parts
+
+
+def test_parts_not_run_keep_their_results():
+    """--parts drum takes the other parts' keys from the earlier results
+    file and writes its own."""
+    import bench
+    kept = {k: f"old {k}" for keys in bench.PARTS.values() for k in keys}
+    new = {k: f"new {k}" for keys in bench.PARTS.values() for k in keys}
+    merged = bench.keep_parts(dict(new), kept, ["drum"])
+    assert merged["drum"] == "new drum"
+    assert merged["whole"] == "old whole"
+    assert merged["summary"] == "old summary"
+    assert merged["per_simulated_second"] == "old per_simulated_second"
+
+
+def _drum_results(tutorial_status="ok"):
+    window = {"J_end": 0.026, "surface_angle_mean_deg": 23.44,
+              "peak_speed_mean": 0.2359, "peak_speed_max": 0.29,
+              "lowest_p_grains": -3.0, "steps_with_negative_p_grains": 4}
+    ref = dict(window, steps=10007, cpu_seconds=2677.0, ms_per_step=267.5,
+               pressure_solutions_per_step=31.0, status="ok")
+    tut = dict(window, J_end=0.0247, peak_speed_mean=0.2305, steps=2608,
+               cpu_seconds=460.0, ms_per_step=176.4,
+               pressure_solutions_per_step=19.0, status=tutorial_status)
+    if tutorial_status == "ok":
+        for key in ("J_end", "surface_angle_mean_deg", "peak_speed_mean",
+                    "peak_speed_max"):
+            tut[f"{key}_vs_reference"] = tut[key] / ref[key] - 1
+    else:
+        for key in window:
+            del tut[key]
+    return {"command": "bench/run", "drum": {
+        "case": "squareDrum", "N": 100, "ranks": 2, "source": "/runs/N100",
+        "start": 20.0, "end": 30.0, "command": "bench/run --parts drum",
+        "date": "2026-12-07T10:00:00+00:00",
+        "settings": {"reference": {"coupling": "Krylov-CC-30",
+                                   "edits": ["a=1"]},
+                     "tutorial": {"coupling": "tutorial", "edits": []}},
+        "runs": {"reference": ref, "tutorial": tut},
+        "speedup": 2677.0 / 460.0}}
+
+
+def test_report_shows_both_drum_revolutions_and_the_speed_up():
+    """The drum section has the reference's and the tutorial's rows, the
+    tutorial's differences from the reference, its own command and the
+    speed-up; a failed run shows its status; no drum part, no section."""
+    lines = report.drum_section(_drum_results())
+    assert lines[2] == "    bench/run --parts drum"
+    rows = [x for x in lines if x.startswith("| reference")
+            or x.startswith("| tutorial")]
+    assert len(rows) == 2
+    assert rows[0].startswith("| reference | 10007 | 2677 | 268 | 31.0 | "
+                              "0.0260 | 23.44 | 0.236 / 0.290 | -3.0 (4) |")
+    assert "| 0.0247 (-5.0%) | 23.44 (+0.0%) | 0.231 (-2.3%) / 0.290 " \
+        "(+0.0%) |" in rows[1]
+    assert lines[-1] == ("Speed-up of the tutorial over the reference "
+                         "(CPU): **5.82**.")
+    failed = report.drum_section(_drum_results("failed (exit 1)"))
+    row = next(x for x in failed if x.startswith("| tutorial"))
+    assert row.endswith("|  |  |  |  | failed (exit 1) |")
+    assert report.drum_section({"drum": None}) == []
+    assert report.drum_section({}) == []
