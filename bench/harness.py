@@ -97,6 +97,8 @@ TUTORIAL_NAME = "tutorial"
 DRUM_REFERENCE = ("Krylov-CahouetChabard-30-tol1e-3",
                   ("system/fvSolution:maxAlphaSubCycles=0",
                    "system/controlDict:maxDeltaT=1e-3"))
+# The files of a drum case that set its coupling, schemes and time control
+DRUM_FILES = ("system/fvSolution", "system/fvSchemes", "system/controlDict")
 
 
 # --------------------------------------------------------------------------
@@ -781,14 +783,17 @@ def store_whole(entries, command):
         entries, command)
 
 
-def whole_drum(source, start, coupling, edits, duration=None):
+def whole_drum(source, start, coupling, edits, duration=None,
+               files=None):
     """One revolution of a drum run from its written time `start`, on the
     source run's decomposition: the source's case (its processor
     directories at `start`) with the coupling and the edits; the
     rotatingDrum monitor over the revolution against the source run's
     over the same window (granularfoam.post.drum).  With a duration
     shorter than a revolution, the run of that duration and its cost
-    alone."""
+    alone.  files: a case whose system/fvSolution, fvSchemes and
+    controlDict replace the source's before the coupling and the edits
+    (bench/run's drum part: the tutorial's)."""
     duration = duration or drum.PERIOD
     end = start + duration
     source = Path(source).resolve()
@@ -798,11 +803,14 @@ def whole_drum(source, start, coupling, edits, duration=None):
     n = int(read_parameters(source, "drumParameters")["N"])
     case = WORK / "drum" / "_".join(filter(None, [
         f"N{n}", f"t{start:g}",
-        f"d{duration:g}" if duration != drum.PERIOD else "", coupling,
+        f"d{duration:g}" if duration != drum.PERIOD else "",
+        f"files-{Path(files).name}" if files else "", coupling,
         _tag(edits)]))
     if case.exists():
         shutil.rmtree(case)
     shutil.copytree(source, case, ignore=_state_of_run(source, start_name))
+    for name in (DRUM_FILES if files else ()):
+        shutil.copyfile(Path(files) / name, case / name)
     set_entry(case, "system/drumParameters", "endTime", end)
     set_entry(case, "system/drumParameters", "writeInterval", duration)
     for entry, value in coupling_settings(coupling).items():

@@ -383,46 +383,70 @@ def test_drum_part_is_the_reference_and_the_tutorial_unchanged():
 
 
 def _drum_state(tmp_path, time="20"):
-    """A stand-in of a decomposed drum run: the tutorial's system files and
+    """A stand-in of a decomposed drum run: the tutorial's case files and
     processor0/<time>."""
     import bench
+    import harness
     source = tmp_path / "N100"
-    for name in bench.DRUM_FILES:
+    for name in (*harness.DRUM_FILES, "system/drumParameters"):
         (source / name).parent.mkdir(parents=True, exist_ok=True)
         (source / name).write_bytes((bench.DRUM_TUTORIAL / name)
                                     .read_bytes())
     (source / "processor0" / time).mkdir(parents=True)
+    (source / "processor0" / time / "alpha.air").write_text("")
+    (source / "processor0" / "constant").mkdir()
     return source
 
 
-def test_drum_source_must_be_a_state_of_the_tutorial(tmp_path):
-    """The drum part runs from a decomposed run of the tutorial as its
-    files say, at a time it wrote: another coupling, a missing time or an
-    undecomposed case is refused, naming what is wrong; without a source,
-    --parts drum is refused."""
+def test_drum_source_must_be_a_decomposed_drum_run(tmp_path):
+    """The drum part runs from a decomposed drum run at a time it wrote:
+    a missing time or an undecomposed case is refused, naming what is
+    wrong; without a source, --parts drum is refused."""
     import bench
     source = _drum_state(tmp_path)
     assert bench.drum_source_problems(source, 20) == []
     assert bench.drum_source_problems(source, 30) == [
         "processor0 has no time 30"]
-    fv = source / "system" / "fvSolution"
-    fv.write_text(fv.read_text().replace("maxIter         20;",
-                                         "maxIter         30;"))
-    problems = bench.drum_source_problems(source, 20)
-    assert problems == ["system/fvSolution is not the tutorial's "
-                        "(tutorials/squareDrum/system/fvSolution)"]
     assert bench.drum_source_problems(tmp_path, 20)[0].startswith(
-        "no processor directories")
+        "not a decomposed run of tutorials/squareDrum")
     with pytest.raises(SystemExit):
         bench.parse_args(["--parts", "drum"])
     with pytest.raises(SystemExit):
         bench.parse_args(["--parts", "drum", "--drum-source", str(source),
-                          "--drum-start", "20"])
+                          "--drum-start", "30"])
     args = bench.parse_args(["--parts", "drum", "--drum-source",
-                             str(_drum_state(tmp_path / "b")),
-                             "--drum-start", "20"])
+                             str(source), "--drum-start", "20"])
     assert args.parts == ["drum"]
     assert "drum" not in bench.parse_args([]).parts
+
+
+def test_drum_runs_take_the_tutorials_files(tmp_path, monkeypatch):
+    """Both drum runs of bench/run start from the state with the tutorial's
+    fvSolution, fvSchemes and controlDict, whatever the source's were;
+    the reference's coupling is then set on them."""
+    import bench
+    import generate
+    import harness
+    source = _drum_state(tmp_path)
+    fv = source / "system" / "fvSolution"
+    fv.write_text(fv.read_text().replace("maxIter         20;",
+                                         "maxIter         7;"))
+    monkeypatch.setattr(harness, "WORK", tmp_path / "work")
+    monkeypatch.setattr(harness.subprocess, "call", lambda *a, **k: 1)
+    result = bench.run_drum(source, 20, None, "bench/run")
+    for name, run in result["runs"].items():
+        assert run["status"] == "failed (exit 1)"
+        case = next((tmp_path / "work" / "drum").glob(f"*files-*{name}*"
+                    if name == "tutorial" else "*files-*Krylov*"))
+        iters = generate.foam_value(case / "system" / "fvSolution",
+                                    "PIMPLE/Krylov/maxIter")
+        assert iters == ("20" if name == "tutorial" else "30")
+        # the reference's controlDict is edited (maxDeltaT)
+        same = harness.DRUM_FILES[1:] if name == "tutorial" else \
+            ("system/fvSchemes",)
+        for f in same:
+            assert (case / f).read_bytes() == (bench.DRUM_TUTORIAL / f
+                                               ).read_bytes()
 
 
 def test_parts_not_run_keep_their_results():
