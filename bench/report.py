@@ -431,15 +431,19 @@ def drum_reference(runs, r):
     return None
 
 
-def whole_drum_section():
+def whole_drum_section(results=None):
     """One drum revolution from a written time, by coupling (bench/harness
     drum), against the run it started from or, from a state, against the
-    reference revolution."""
+    reference revolution (of bench/harness drum, or of bench/run's drum
+    part in results)."""
     from granularfoam.post import drum
     import harness
     runs = coupling_runs("whole_drum")
     if not runs:
         return []
+    bench_drum = (results or {}).get("drum") or {}
+    references = runs + [bench_drum["runs"]["reference"]] \
+        if bench_drum else runs
     lines = [
         "## Whole drum revolutions by coupling",
         "",
@@ -454,7 +458,8 @@ def whole_drum_section():
         "revolutions of the tutorial (80 s) on as many cores as ranks. A "
         "row of part of a revolution (`--duration`) gives that cost alone. "
         "From a state (not a run) the differences and the speed-up are "
-        "against the reference revolution from the same state: "
+        "against the reference revolution from the same state (here or "
+        "in bench/run's drum part): "
         f"`{harness.DRUM_REFERENCE[0]}` with "
         f"{edit_list(list(harness.DRUM_REFERENCE[1]))} (the coupling "
         "converged at the chute reference's step, the phases transported "
@@ -511,7 +516,7 @@ def whole_drum_section():
                 f"({src['steps_with_negative_p_grains']}) | |")
         name = " ".join(filter(None, [drum_coupling(r),
                                       edit_list(r["edits"])]))
-        ref = drum_reference(runs, r) if not src else None
+        ref = drum_reference(references, r) if not src else None
         cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
                  r["steps"], g(r["cpu_seconds"], "{:.0f}"),
                  *per_second(r["cpu_seconds"], r),
@@ -854,7 +859,7 @@ def write(results, path):
             lines += ["", *section]
     for section in (harness_section(), spectra_section(),
                     whole_chute_section(), profile_section(),
-                    whole_drum_section(), drum_profile_section(),
+                    whole_drum_section(results), drum_profile_section(),
                     tutorials_section()):
         if section:
             lines += ["", *section]

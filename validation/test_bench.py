@@ -509,3 +509,28 @@ def test_report_shows_both_drum_revolutions_and_the_speed_up():
     assert row.endswith("|  |  |  |  | failed (exit 1) |")
     assert report.drum_section({"drum": None}) == []
     assert report.drum_section({}) == []
+
+
+def test_drum_rows_from_a_state_compare_with_bench_runs_reference(
+        monkeypatch):
+    """A harness revolution from the state of bench/run's drum part is
+    compared with that part's reference revolution when coupling.json has
+    none."""
+    results = _drum_results()
+    ref = results["drum"]["runs"]["reference"]
+    ref.update(source="/runs/N100", start=20.0, end=30.0,
+               coupling="Krylov-CC-30", edits=["a=1"])
+    run = dict(ref, coupling="Krylov-CahouetChabard-20",
+               edits=["system/fvSolution:PIMPLE.correctPhi=no"], N=100,
+               source_coupling="Krylov CahouetChabard 20", steps=2000,
+               cpu_seconds=535.4, J_end=0.0247, peak_speed_mean=0.2336,
+               surface_angle_range_deg=[21.0, 25.0])
+    monkeypatch.setattr(report, "coupling_runs", lambda section: [run])
+    monkeypatch.setattr(
+        sys.modules["harness"], "DRUM_REFERENCE", ("Krylov-CC-30", ("a=1",)))
+    row = next(x for x in report.whole_drum_section(results)
+               if "correctPhi" in x)
+    assert "| 5.0 |" in row and "0.0247 (-5.0%)" in row \
+        and "0.234 (-1.0%)" in row
+    row = next(x for x in report.whole_drum_section({}) if "correctPhi" in x)
+    assert "| 5.0 |" not in row and "(-5.0%)" not in row
