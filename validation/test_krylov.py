@@ -84,3 +84,23 @@ def test_krylov_says_when_not_converged(base, tmp_path):
         m = re.search(r"not converged to tolerance (\S+) within maxIter 1$",
                       line)
         assert m and float(m.group(1)) == 1e-9, line
+
+
+def test_krylov_final_settings_take_the_final_outer_iteration(base,
+                                                              tmp_path):
+    """With two outer iterations, Krylov's settings serve the first and
+    KrylovFinal's the second (final) one of every step."""
+    edits = krylov("BFBt", 300, "1e-9") + [
+        (r"nOuterCorrectors\s+\d+;", "nOuterCorrectors    2;"),
+        (r"Krylov \{", "KrylovFinal { preconditioner PISO; maxIter 1; "
+                       "tolerance 1e-9; }\n    Krylov {")]
+    _, log = _run(base, tmp_path, "krylovFinal", edits)
+    lines = re.findall(r"^Krylov coupling: .*$", log, re.M)
+    assert len(lines) == 2 * STEPS, log[-3000:]
+    for first, final in zip(lines[::2], lines[1::2]):
+        assert first.startswith("Krylov coupling: BFBt, ") \
+            and "not converged" not in first, first
+        m = re.search(r"not converged to tolerance (\S+) within maxIter 1$",
+                      final)
+        assert final.startswith("Krylov coupling: PISO, 1 iterations ") \
+            and m and float(m.group(1)) == 1e-9, final

@@ -193,10 +193,8 @@ Foam::granularKrylovCoupling::granularKrylovCoupling
 )
 :
     pimple_(pimple),
-    preconditioner_(preconditioner::CahouetChabard),
-    tolerance_(1e-2),
-    maxIter_(20),
-    innerRelTol_(0.01),
+    settings_(readSettings(dictionary::null)),
+    finalSettings_(settings_),
     nIter_(0),
     relResidual_(0),
     nPressureSolutions_(0)
@@ -207,11 +205,50 @@ Foam::granularKrylovCoupling::granularKrylovCoupling
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
+Foam::granularKrylovCoupling::settings
+Foam::granularKrylovCoupling::readSettings(const dictionary& dict)
+{
+    settings s;
+
+    s.schur = granularInput::readEnum
+    (
+        dict, "preconditioner",
+        preconditionerNames, preconditioner::CahouetChabard
+    );
+
+    s.tolerance = dict.getOrDefault<scalar>("tolerance", 1e-2);
+    if (!(s.tolerance > 0 && s.tolerance < 1))
+    {
+        granularInput::invalid
+        (
+            dict, "tolerance", s.tolerance, "0 < tolerance < 1"
+        );
+    }
+
+    s.maxIter = dict.getOrDefault<label>("maxIter", 20);
+    if (s.maxIter < 1)
+    {
+        granularInput::invalid(dict, "maxIter", s.maxIter, ">= 1");
+    }
+
+    s.innerRelTol = dict.getOrDefault<scalar>("innerRelTol", 0.01);
+    if (!(s.innerRelTol > 0 && s.innerRelTol < 1))
+    {
+        granularInput::invalid
+        (
+            dict, "innerRelTol", s.innerRelTol, "0 < innerRelTol < 1"
+        );
+    }
+
+    return s;
+}
+
+
 void Foam::granularKrylovCoupling::read()
 {
     // The Krylov dictionary is optional; present, it must be a dictionary
     const dictionary& pimpleDict = pimple_.dict();
-    const dictionary dict
+    settings_ = readSettings
     (
         pimpleDict.found("Krylov", keyType::LITERAL)
       ? granularInput::subDict
@@ -221,35 +258,20 @@ void Foam::granularKrylovCoupling::read()
       : pimpleDict.subOrEmptyDict("Krylov")
     );
 
-    preconditioner_ = granularInput::readEnum
+    // KrylovFinal, for the final outer iteration, likewise; absent, Krylov
+    finalSettings_ =
     (
-        dict, "preconditioner",
-        preconditionerNames, preconditioner::CahouetChabard
+        pimpleDict.found("KrylovFinal", keyType::LITERAL)
+      ? readSettings
+        (
+            granularInput::subDict
+            (
+                pimpleDict, "KrylovFinal",
+                "the Krylov settings of the final outer iteration"
+            )
+        )
+      : settings_
     );
-
-    tolerance_ = dict.getOrDefault<scalar>("tolerance", 1e-2);
-    if (!(tolerance_ > 0 && tolerance_ < 1))
-    {
-        granularInput::invalid
-        (
-            dict, "tolerance", tolerance_, "0 < tolerance < 1"
-        );
-    }
-
-    maxIter_ = dict.getOrDefault<label>("maxIter", 20);
-    if (maxIter_ < 1)
-    {
-        granularInput::invalid(dict, "maxIter", maxIter_, ">= 1");
-    }
-
-    innerRelTol_ = dict.getOrDefault<scalar>("innerRelTol", 0.01);
-    if (!(innerRelTol_ > 0 && innerRelTol_ < 1))
-    {
-        granularInput::invalid
-        (
-            dict, "innerRelTol", innerRelTol_, "0 < innerRelTol < 1"
-        );
-    }
 }
 
 
@@ -261,7 +283,9 @@ void Foam::granularKrylovCoupling::solve
     volScalarField& p_rgh
 )
 {
-    KrylovStep ks(step, U, p_rgh, preconditioner_, innerRelTol_);
+    const settings& set = pimple_.finalIter() ? finalSettings_ : settings_;
+
+    KrylovStep ks(step, U, p_rgh, set.schur, set.innerRelTol);
 
     const KrylovVector x0(U.primitiveField(), p_rgh.primitiveField());
     const KrylovVector r0(ks.residual(x0));
@@ -274,7 +298,7 @@ void Foam::granularKrylovCoupling::solve
     // iteration removes, would set the target
     const KrylovVector u0(x0.u, scalarField(x0.p.size(), Zero));
     const scalar speed = Foam::sqrt(ks.dot(u0, u0));
-    const scalar target = tolerance_*(speed > 0 ? speed : beta);
+    const scalar target = set.tolerance*(speed > 0 ? speed : beta);
 
     vectorField u(x0.u);
     scalarField p(x0.p);
@@ -282,8 +306,8 @@ void Foam::granularKrylovCoupling::solve
     nIter_ = 0;
     if (beta > 0)
     {
-        FGMRES fgmres(maxIter_, r0, beta, debug);
-        while (fgmres.nIter() < maxIter_ && res > target)
+        FGMRES fgmres(set.maxIter, r0, beta, debug);
+        while (fgmres.nIter() < set.maxIter && res > target)
         {
             autoPtr<KrylovVector> z
             (
@@ -317,15 +341,15 @@ void Foam::granularKrylovCoupling::solve
     relResidual_ = res/(speed > 0 ? speed : max(beta, VSMALL));
     nPressureSolutions_ = ks.nPressureSolutions();
 
-    Info<< "Krylov coupling: " << preconditionerNames[preconditioner_]
+    Info<< "Krylov coupling: " << preconditionerNames[set.schur]
         << ", " << nIter_ << " iterations (" << ks.nInnerIterations()
         << " of the inner solvers), residual " << beta << " -> "
         << res << " m/s, " << relResidual_ << " of the "
         << (speed > 0 ? "RMS speed" : "initial residual");
     if (res > target)
     {
-        Info<< ": not converged to tolerance " << tolerance_
-            << " within maxIter " << maxIter_;
+        Info<< ": not converged to tolerance " << set.tolerance
+            << " within maxIter " << set.maxIter;
     }
     Info<< endl;
 }
