@@ -490,6 +490,18 @@ def summarise_adaptive(configs, runs):
     return rows, speedup
 
 
+def ms_per_step(entry):
+    """CPU milliseconds per step of a whole run's entry; None without."""
+    cpu = entry.get("cpu_seconds")
+    return 1000 * cpu / entry["steps"] if cpu and entry.get("steps") else None
+
+
+def cpu_ratio(ref, tut):
+    """The reference's CPU seconds over the tutorial's; None without."""
+    return (ref["cpu_seconds"] / tut["cpu_seconds"]
+            if ref.get("cpu_seconds") and tut.get("cpu_seconds") else None)
+
+
 def run_whole(end_time):
     """The whole chute runs of WHOLE, side by side (one process each), and
     the reference's CPU time over the tutorial's."""
@@ -503,14 +515,11 @@ def run_whole(end_time):
         entry["configuration"] = name
         cpu = entry.get("cpu_seconds")
         entry["cpu_per_simulated_s"] = cpu / end_time if cpu else None
-        entry["ms_per_step"] = (1000 * cpu / entry["steps"]
-                                if cpu and entry["steps"] else None)
+        entry["ms_per_step"] = ms_per_step(entry)
         print(f"bench/run: whole chute, {name}: {entry['status']}, "
               f"{entry['steps']} steps, {cpu} CPU s", flush=True)
     ref, tut = runs["reference"], runs["tutorial"]
-    speedup = (ref["cpu_seconds"] / tut["cpu_seconds"]
-               if ref.get("cpu_seconds") and tut.get("cpu_seconds")
-               else None)
+    speedup = cpu_ratio(ref, tut)
     return {"case": "chute", "mesh": "155x40", "ranks": 1,
             "end_time": end_time, "side_by_side": True,
             "settings": WHOLE, "runs": runs, "speedup": speedup}
@@ -533,15 +542,12 @@ def run_drum(source, start, duration, command):
             # whether the source run reaches the end does not matter here
             entry["status"] = "ok"
         cpu = entry.get("cpu_seconds")
-        entry["ms_per_step"] = (1000 * cpu / entry["steps"]
-                                if cpu and entry.get("steps") else None)
+        entry["ms_per_step"] = ms_per_step(entry)
         runs[name] = entry
         print(f"bench/run: drum, {name}: {entry['status']}, "
               f"{entry.get('steps')} steps, {cpu} CPU s", flush=True)
     ref, tut = runs["reference"], runs["tutorial"]
-    speedup = (ref["cpu_seconds"] / tut["cpu_seconds"]
-               if ref.get("cpu_seconds") and tut.get("cpu_seconds")
-               else None)
+    speedup = cpu_ratio(ref, tut)
     if all("J_end" in r for r in (ref, tut)):
         for key in DRUM_METRICS:
             tut[f"{key}_vs_reference"] = tut[key] / ref[key] - 1

@@ -170,6 +170,18 @@ def adaptive_section(results):
     ]
 
 
+def status_cell(r):
+    """The status of run r in one table cell, however long the reason."""
+    status = " ".join(str(r["status"]).replace("|", "/").split())
+    return status if len(status) <= 80 else status[:77] + "..."
+
+
+def speedup_lines(speedup):
+    """The closing line of a reference-against-tutorial section."""
+    return ["", "Speed-up of the tutorial over the reference (CPU): "
+            + (f"**{speedup:.2f}**." if speedup else "—.")]
+
+
 def whole_section(results):
     """The whole chute runs of bench/run: the reference coupling and the
     tutorial's, side by side."""
@@ -210,17 +222,23 @@ def whole_section(results):
                  g(r["ms_per_step"], "{:.3g}"),
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
         cells += outflow_cells(r, ok)
-        # one line of the table, however long the reason
-        status = " ".join(str(r["status"]).replace("|", "/").split())
-        cells.append(status if len(status) <= 80 else status[:77] + "...")
+        cells.append(status_cell(r))
         lines.append(table_row(cells))
-    speedup = whole.get("speedup")
-    lines += [
-        "",
-        "Speed-up of the tutorial over the reference (CPU): "
-        + (f"**{speedup:.2f}**." if speedup else "—."),
-    ]
-    return lines
+    return lines + speedup_lines(whole.get("speedup"))
+
+
+def drum_window_cells(r, diff):
+    """The cells of drum revolution r's monitor: J at the end, the mean
+    surface angle, the peak speed's mean / largest, each followed by
+    diff(key), and the lowest grain pressure (steps below zero)."""
+    return [
+        dash_or(r["J_end"], "{:.4f}") + diff("J_end"),
+        f"{r['surface_angle_mean_deg']:.2f}"
+        + diff("surface_angle_mean_deg"),
+        f"{r['peak_speed_mean']:.3f}{diff('peak_speed_mean')} / "
+        f"{r['peak_speed_max']:.3f}{diff('peak_speed_max')}",
+        f"{r['lowest_p_grains']:.1f} "
+        f"({r['steps_with_negative_p_grains']})"]
 
 
 def drum_section(results):
@@ -272,26 +290,12 @@ def drum_section(results):
                  g(r.get("ms_per_step"), "{:.3g}"),
                  g(r.get("pressure_solutions_per_step"), "{:.1f}")]
         if "J_end" in r:
-            cells += [
-                f"{r['J_end']:.4f}{vs(r, 'J_end')}",
-                f"{r['surface_angle_mean_deg']:.2f}"
-                f"{vs(r, 'surface_angle_mean_deg')}",
-                f"{r['peak_speed_mean']:.3f}{vs(r, 'peak_speed_mean')} / "
-                f"{r['peak_speed_max']:.3f}{vs(r, 'peak_speed_max')}",
-                f"{r['lowest_p_grains']:.1f} "
-                f"({r['steps_with_negative_p_grains']})"]
+            cells += drum_window_cells(r, lambda key: vs(r, key))
         else:
             cells += ["", "", "", ""]
-        status = " ".join(str(r["status"]).replace("|", "/").split())
-        cells.append(status if len(status) <= 80 else status[:77] + "...")
+        cells.append(status_cell(r))
         lines.append(table_row(cells))
-    speedup = d.get("speedup")
-    lines += [
-        "",
-        "Speed-up of the tutorial over the reference (CPU): "
-        + (f"**{speedup:.2f}**." if speedup else "—."),
-    ]
-    return lines
+    return lines + speedup_lines(d.get("speedup"))
 
 
 def tutorials_section():
@@ -523,16 +527,7 @@ def whole_drum_section(results=None):
                  speed_up(r, ref) if ok and "J_end" in r else "",
                  g(r["pressure_solutions_per_step"], "{:.1f}")]
         if ok and "J_end" in r:
-            cells += [
-                g(r["J_end"], "{:.4f}") + vs(r, "J_end", ref),
-                f"{r['surface_angle_mean_deg']:.2f}"
-                + vs(r, "surface_angle_mean_deg", ref),
-                f"{r['peak_speed_mean']:.3f}"
-                f"{vs(r, 'peak_speed_mean', ref)}"
-                f" / {r['peak_speed_max']:.3f}"
-                f"{vs(r, 'peak_speed_max', ref)}",
-                f"{r['lowest_p_grains']:.1f} "
-                f"({r['steps_with_negative_p_grains']})"]
+            cells += drum_window_cells(r, lambda key: vs(r, key, ref))
         else:
             cells += ["", "", "", ""]
         cells.append(r["status"])
