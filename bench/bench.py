@@ -136,11 +136,12 @@ def parse_args(argv):
                              f"{WHOLE_END_TIME}; {QUICK['whole_end_time']} "
                              "with --quick; 0 leaves them out)")
     parser.add_argument("--drum-source", type=Path, metavar="DIR",
-                        help="a decomposed run of tutorials/squareDrum as "
-                             "its files say (any N): the drum part runs one "
-                             "revolution from its written time --drum-start "
-                             "with the reference coupling and the "
-                             "tutorial's (default: no drum part)")
+                        help="a decomposed run of tutorials/squareDrum (any "
+                             "N): the drum part runs one revolution from "
+                             "its written time --drum-start with the "
+                             "tutorial's files, with the reference coupling "
+                             "and with the tutorial's (default: no drum "
+                             "part)")
     parser.add_argument("--drum-start", type=float, metavar="SECONDS",
                         help="the written time of --drum-source to start "
                              "from")
@@ -699,7 +700,8 @@ def main(argv):
     whole = None
     if args.whole_end_time > 0 and "chute" in args.parts:
         whole = run_whole(args.whole_end_time)
-        whole.update(command=command, machine=results["machine"],
+        whole.update(command=command, date=results["date"],
+                     machine=results["machine"],
                      software=results["software"])
 
     drum = None

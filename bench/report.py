@@ -256,7 +256,9 @@ def drum_section(results):
         "",
         f"    {d['command']}",
         "",
-        f"({d['date'][:10]}; `--parts drum` runs this part alone.) The "
+        f"({d['date'][:10]}, {d['machine']['cpu']}, "
+        f"{d['machine']['cpus']} cores; `--parts drum` runs this part "
+        "alone.) The "
         f"square drum tutorial at N = {d['N']} from its written time "
         f"{d['start']:g} s (`{d['source']}`, a run of "
         "`tutorials/squareDrum`) to "

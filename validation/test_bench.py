@@ -482,6 +482,7 @@ def _drum_results(tutorial_status="ok"):
         "case": "squareDrum", "N": 100, "ranks": 2, "source": "/runs/N100",
         "start": 20.0, "end": 30.0, "command": "bench/run --parts drum",
         "date": "2026-12-07T10:00:00+00:00",
+        "machine": {"cpu": "AMD EPYC", "cpus": 2},
         "settings": {"reference": {"coupling": "Krylov-CC-30",
                                    "edits": ["a=1"]},
                      "tutorial": {"coupling": "tutorial", "edits": []}},
@@ -495,6 +496,7 @@ def test_report_shows_both_drum_revolutions_and_the_speed_up():
     speed-up; a failed run shows its status; no drum part, no section."""
     lines = report.drum_section(_drum_results())
     assert lines[2] == "    bench/run --parts drum"
+    assert lines[4].startswith("(2026-12-07, AMD EPYC, 2 cores;")
     rows = [x for x in lines if x.startswith("| reference")
             or x.startswith("| tutorial")]
     assert len(rows) == 2
