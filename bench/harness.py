@@ -809,8 +809,9 @@ def whole_drum(source, start, coupling, edits, duration=None,
     if case.exists():
         shutil.rmtree(case)
     shutil.copytree(source, case, ignore=_state_of_run(source, start_name))
-    for name in (DRUM_FILES if files else ()):
-        shutil.copyfile(Path(files) / name, case / name)
+    if files:
+        for name in DRUM_FILES:
+            shutil.copyfile(Path(files) / name, case / name)
     set_entry(case, "system/drumParameters", "endTime", end)
     set_entry(case, "system/drumParameters", "writeInterval", duration)
     for entry, value in coupling_settings(coupling).items():

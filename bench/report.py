@@ -447,9 +447,9 @@ def whole_drum_section(results=None):
     runs = coupling_runs("whole_drum")
     if not runs:
         return []
-    bench_drum = (results or {}).get("drum") or {}
-    references = runs + [bench_drum["runs"]["reference"]] \
-        if bench_drum else runs
+    bench_drum = (results or {}).get("drum")
+    references = (runs + [bench_drum["runs"]["reference"]] if bench_drum
+                  else runs)
     lines = [
         "## Whole drum revolutions by coupling",
         "",
