@@ -178,15 +178,16 @@ RESTARTS = {
 @pytest.mark.parametrize("which", list(RESTARTS))
 def test_restart(foam_env, which):
     """Stop at a written time, restart from it (startFrom latestTime): at
-    the end every field the solver reads at a restart (U, p, p_rgh, every
-    phase fraction; with the moving mesh Uf, meshPhi and rAU) equals the
-    uninterrupted run's to 1e-10 of its largest value (fields written at 17
-    digits), in open domains (the layer with the explicit and the implicit
-    stress, the column) and in the turning drum, with fixed and adjustable
-    steps, and with the Krylov coupling and the adjustable step (the
-    phases transported with the flux at the start of the step and at its
-    middle).  phi is left out: in one column its values are round-off
-    (1e-20 m^3/s), whose relative difference means nothing."""
+    the end every field the solver reads at a restart (U, p, p_rgh, phi,
+    every phase fraction; with the moving mesh Uf, meshPhi and rAU) equals
+    the uninterrupted run's bit for bit (fields written at 17 digits), in
+    open domains (the layer with the explicit and the implicit stress, the
+    column) and in the turning drum, with fixed and adjustable steps, and
+    with the Krylov coupling and the adjustable step (the phases
+    transported with the flux at the start of the step and at its middle).
+    A difference in the last bit anywhere (a step landing on a write time
+    counted from the restart's start) grows to 1e-6 with the tutorial's
+    Krylov coupling, whose inner solutions end at a relative 0.1."""
     make, end_file, half, end = RESTARTS[which]
     whole, split = _restart_pair(make, which, end_file, half, end)
     diff = _max_relative_difference(whole, split, end)
@@ -194,8 +195,8 @@ def test_restart(foam_env, which):
     assert {"U", "p", "p_rgh", "alpha.air", "alpha.small"} <= set(diff), diff
     # The start of the step's flux is written when midStep uses it
     assert ("phiStepStart" in diff) == ("mid-step" in which), diff
-    checked = {k: v for k, v in diff.items() if k in STATE - {"phi"}}
-    assert max(checked.values()) < 1e-10, checked
+    checked = {k: v for k, v in diff.items() if k in STATE}
+    assert max(checked.values()) == 0, checked
 
 
 @pytest.mark.parametrize("flux", ["startOfStep", "midStep"])
