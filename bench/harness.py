@@ -426,12 +426,25 @@ def replace_solver(case, key, value):
     fvSolution's solvers by `key value`, for the keys that foamDictionary
     cannot scope (regular expressions such as "(U|UFinal)" or "pcorr.*",
     which -set rewrites into an entry of their first match).  value is a
-    dictionary in braces."""
+    dictionary in braces.  A key that is a field's name (a word) and not
+    there is added first in solvers: OpenFOAM takes a literal key before
+    the regular expressions, so `U` alone gives the Krylov coupling's
+    inner momentum solutions their own solver while the predictor keeps
+    "(U|UFinal)"'s (it solves UFinal in the final outer iteration).  A
+    regular expression that is not there is refused."""
     if not re.fullmatch(r"\{.*\}", value.strip()):
         raise ValueError(f"solvers.{key}={value}: not a dictionary in braces")
-    edit(case / "system" / "fvSolution",
-         [(r"^([ \t]*)" + re.escape(key) + r"\s*\{[^{}]*\}",
-           lambda m: f"{m.group(1)}{key} {value.strip()}")],
+    fvSolution = case / "system" / "fvSolution"
+    entry = r"^([ \t]*)" + re.escape(key) + r"\s*\{[^{}]*\}"
+    if re.fullmatch(r"\w+", key) and not re.search(
+            entry, fvSolution.read_text(), flags=re.M):
+        edit(fvSolution,
+             [(r"^(solvers\s*\{[ \t]*\n)",
+               lambda m: f"{m.group(1)}    {key} {value.strip()}\n")],
+             flags=re.M)
+        return
+    edit(fvSolution,
+         [(entry, lambda m: f"{m.group(1)}{key} {value.strip()}")],
          flags=re.M)
 
 

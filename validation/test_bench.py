@@ -175,8 +175,10 @@ def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
 
 def test_harness_edits_replace_a_regex_keyed_solver_entry(tmp_path):
     """--edit system/fvSolution:solvers."(U|UFinal)"={...} replaces the
-    entry whose name is a regular expression, keeping the others; a key
-    that is not there and a value that is not a dictionary are refused."""
+    entry whose name is a regular expression, keeping the others; a field's
+    name that is not there (U) is added beside the regular expression, a
+    regular expression that is not there and a value that is not a
+    dictionary are refused."""
     import harness
     case = tmp_path / "case"
     (case / "system").mkdir(parents=True)
@@ -192,6 +194,17 @@ def test_harness_edits_replace_a_regex_keyed_solver_entry(tmp_path):
                                'solvers/"(U|UFinal)"/relTol') == "0.1"
     assert generate.foam_value(fvSolution,
                                'solvers/"pcorr.*"/solver') == "PCG"
+    harness.apply_edits(case, [
+        'system/fvSolution:solvers.U={ solver smoothSolver; '
+        'smoother symGaussSeidel; }'])
+    assert generate.foam_value(fvSolution, "solvers/U/solver") \
+        == "smoothSolver"
+    assert generate.foam_value(fvSolution,
+                               'solvers/"(U|UFinal)"/solver') == "GAMG"
+    harness.apply_edits(case, [
+        'system/fvSolution:solvers.U={ solver PBiCG; preconditioner DILU; }'])
+    assert generate.foam_value(fvSolution, "solvers/U/solver") == "PBiCG"
+    assert fvSolution.read_text().count("PBiCG;") == 1
     with pytest.raises(AssertionError, match="not in"):
         harness.apply_edits(case, [
             'system/fvSolution:solvers."(V|VFinal)"={ solver GAMG; }'])
