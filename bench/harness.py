@@ -58,6 +58,7 @@ import platform
 import re
 import shutil
 import signal
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -928,6 +929,24 @@ def drum_window(case, start):
                                       for c in cost)}
 
 
+def repeated(entries):
+    """One entry of the same run made len(entries) times: the last, with
+    the median of their CPU seconds (and of their window's) and the CPU
+    seconds of each (cpu_seconds_repeats); the first failure's status if
+    one failed."""
+    e = dict(entries[-1])
+    if len(entries) > 1:
+        for key in ("cpu_seconds", "window_cpu_seconds"):
+            values = [x[key] for x in entries if x.get(key) is not None]
+            if values:
+                e[key] = float(statistics.median(values))
+        e["cpu_seconds_repeats"] = [x.get("cpu_seconds") for x in entries]
+        failed = [x for x in entries if not x["status"].startswith("ok")]
+        if failed:
+            e["status"] = failed[0]["status"]
+    return e
+
+
 def store_drum(entries, command):
     store_runs(
         "whole_drum",
@@ -994,6 +1013,15 @@ def main(argv=None):
                     "cost alone (default: one revolution)")
     pd.add_argument("--edit", nargs="+", default=[],
                     metavar="DICT:ENTRY=VALUE")
+    pd.add_argument("--variant", nargs="*", action="append",
+                    metavar="DICT:ENTRY=VALUE",
+                    help="a set of edits beside --edit's; each --variant "
+                    "(an empty one: --edit's alone) is run with every "
+                    "coupling, one after the other")
+    pd.add_argument("--repeat", type=int, default=1,
+                    help="run the variants and couplings this many times, "
+                    "interleaved; each entry's CPU is the median "
+                    "(default 1)")
     pd.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
     pk = sub.add_parser("spectrum", help="Ritz values of the Krylov "
@@ -1008,11 +1036,14 @@ def main(argv=None):
     pk.add_argument("--no-store", action="store_true",
                     help="print, do not write bench/coupling.json")
     args = parser.parse_args(argv)
+    variants = getattr(args, "variant", None) or [[]]
     try:
-        for e in args.edit:
+        for e in args.edit + [e for v in variants for e in v]:
             parse_edit(e)
     except ValueError as err:
         parser.error(str(err))
+    if getattr(args, "repeat", 1) < 1:
+        parser.error(f"--repeat {args.repeat}: not a positive integer")
     command = "bench/harness " + " ".join(argv if argv is not None
                                           else sys.argv[1:])
     if args.what == "spectrum":
@@ -1044,17 +1075,25 @@ def main(argv=None):
                 coupling_settings(c)
         except ValueError as err:
             parser.error(str(err))
-        for coupling in args.couplings:
-            if args.what == "chute":
+        if args.what == "chute":
+            for coupling in args.couplings:
                 e = whole_chute(coupling, args.end_time, args.sub_cycles,
                                 args.max_delta_t, args.edit)
-            else:
-                e = whole_drum(args.source, args.start, coupling, args.edit,
-                               args.duration)
-            print(json.dumps(e), flush=True)
-            if not args.no_store:
-                (store_whole if args.what == "chute" else store_drum)(
-                    [e], command)
+                print(json.dumps(e), flush=True)
+                if not args.no_store:
+                    store_whole([e], command)
+            return 0
+        runs = {}
+        for _ in range(args.repeat):
+            for extra in variants:
+                for coupling in args.couplings:
+                    e = whole_drum(args.source, args.start, coupling,
+                                   args.edit + extra, args.duration)
+                    print(json.dumps(e), flush=True)
+                    same = runs.setdefault((coupling, tuple(extra)), [])
+                    same.append(e)
+                    if not args.no_store:
+                        store_drum([repeated(same)], command)
         return 0
     if args.what == "states":
         try:

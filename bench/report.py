@@ -535,8 +535,11 @@ def whole_drum_section(results=None):
         name = " ".join(filter(None, [drum_coupling(r),
                                       edit_list(r["edits"])]))
         ref = drum_reference(references, r) if not src else None
+        cpu = g(r["cpu_seconds"], "{:.0f}")
+        if r.get("cpu_seconds_repeats"):
+            cpu += f" (median of {len(r['cpu_seconds_repeats'])})"
         cells = [r["N"], f"{r['start']:g}–{r['end']:g}", name,
-                 r["steps"], g(r["cpu_seconds"], "{:.0f}"),
+                 r["steps"], cpu,
                  *per_second(r["cpu_seconds"], r),
                  speed_up(r, ref) if ok and "J_end" in r else "",
                  g(r["pressure_solutions_per_step"], "{:.1f}")]

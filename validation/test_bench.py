@@ -382,6 +382,49 @@ def test_harness_drum_refuses_a_duration_beyond_a_revolution(
         capsys.readouterr().err
 
 
+def test_harness_drum_interleaves_variants_and_stores_the_median(
+        tmp_path, monkeypatch, capsys):
+    """bench/harness drum --variant ... --repeat K runs every variant (on
+    top of --edit) K times, interleaved, and stores for each the median of
+    its CPU seconds with every repetition's; --repeat 0 and a bad edit in
+    a variant are usage errors."""
+    import harness
+    (tmp_path / "processor0").mkdir()
+    calls, stored = [], []
+    cpu = iter([12.0, 21.0, 16.0, 26.0, 10.0, 20.0])
+
+    def fake(source, start, coupling, edits, duration=None, files=None):
+        calls.append(list(edits))
+        c = next(cpu)
+        return {"source": str(source), "start": start, "end": start + 0.4,
+                "coupling": coupling, "edits": list(edits),
+                "cpu_seconds": c, "window_cpu_seconds": c,
+                "status": "ok; part of a revolution, its cost alone"}
+    monkeypatch.setattr(harness, "whole_drum", fake)
+    monkeypatch.setattr(harness, "store_drum",
+                        lambda entries, command: stored.extend(entries))
+    base = "system/fvSolution:PIMPLE.Krylov.innerRelTol=0.1"
+    other = "system/fvSolution:PIMPLE.correctPhi=no"
+    assert harness.main(["drum", "--source", str(tmp_path), "--start", "20",
+                         "--duration", "0.4", "--couplings", "tutorial",
+                         "--edit", base, "--variant", "--variant", other,
+                         "--repeat", "3"]) == 0
+    assert calls == [[base], [base, other]] * 3
+    last = {tuple(e["edits"]): e for e in stored}
+    assert last[(base,)]["cpu_seconds"] == 12.0
+    assert last[(base,)]["cpu_seconds_repeats"] == [12.0, 16.0, 10.0]
+    assert last[(base, other)]["cpu_seconds"] == 21.0
+    assert last[(base, other)]["window_cpu_seconds"] == 21.0
+    for bad in (["--repeat", "0"], ["--variant", "nonsense"]):
+        with pytest.raises(SystemExit) as exit_info:
+            harness.main(["drum", "--source", str(tmp_path), "--start",
+                          "20", "--no-store", *bad])
+        assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert "--repeat 0: not a positive integer" in err
+    assert "edit 'nonsense' is not DICT:ENTRY=VALUE" in err
+
+
 def test_harness_rows_show_the_references_own_run(monkeypatch):
     """An entry of the reference coupling run against itself (bench/harness
     run --couplings R --reference R) has no errors: its row gives its cost
