@@ -472,9 +472,8 @@ def whole_drum_section(results=None):
         "in the momentum step); the speed-up only against such a "
         "revolution here of the same date, as CPU seconds compare between "
         "rows run one after the other: the machine's speed moves by up to "
-        "a fifth within a day (the row `PIMPLE.Krylov.innerRelTol=0.1` at "
-        "20–30 s against the tutorial of bench/run's drum part, the same "
-        "settings). "
+        "a fifth within a day (the same settings here and in bench/run's "
+        "drum part). "
         "Numbers in `bench/coupling.json` (`whole_drum`).",
         "",
         "| N | revolution [s] | coupling | steps | CPU [s] | CPU / "
