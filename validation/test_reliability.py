@@ -179,7 +179,8 @@ RESTARTS = {
 def test_restart(foam_env, which):
     """Stop at a written time, restart from it (startFrom latestTime): at
     the end every field the solver reads at a restart (U, p, p_rgh, phi,
-    every phase fraction; with the moving mesh Uf, meshPhi and rAU) equals
+    every phase fraction; with the moving mesh Uf, meshPhi and, with
+    correctPhi, rAU) equals
     the uninterrupted run's bit for bit (fields written at 17 digits), in
     open domains (the layer with the explicit and the implicit stress, the
     column) and in the turning drum, with fixed and adjustable steps, and
