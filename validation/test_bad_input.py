@@ -157,6 +157,15 @@ CASES = [
     ("negative-pressure-tolerance", FV, r"nCorrectors         (\d+);",
      "nCorrectors         \\1;\n    pRghTolerance       -1e-3;",
      ["fvSolution", "pRghTolerance", "-0.001"]),
+    ("negative-rheology-correctors", FV, r"nCorrectors         (\d+);",
+     "nCorrectors         \\1;\n    nRheologyCorrectors -1;",
+     ["fvSolution", "nRheologyCorrectors", "-1"]),
+    ("rheology-predictor-without-predictor", FV,
+     r"nOuterCorrectors    1;",
+     "nOuterCorrectors    1;\n    momentumPredictor no;\n"
+     "    viscousStress explicit;\n    pressureCoupling PISO;\n"
+     "    rheologyPredictor yes;",
+     ["fvSolution", "rheologyPredictor", "momentumPredictor"]),
     ("zero-max-sub-cycles", FV, r"maxAlphaSubCycles 5;",
      "maxAlphaSubCycles 0;",
      ["fvSolution", "maxAlphaSubCycles", "0"]),

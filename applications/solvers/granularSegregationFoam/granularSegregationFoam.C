@@ -159,22 +159,45 @@ int main(int argc, char *argv[])
                 mixture.surfaceTensionForce() - ghf*fvc::snGrad(rho)
             );
 
-            addProfiling(momentum, "granular::UEqn");
-            #include "UEqn.H"
-            endProfiling(momentum);
-
-            #include "pressureCoupling.H"
-
-            if (!correctPhi)
+            // The momentum equation and the pressure coupling, then as many
+            // passes again as nRheologyCorrectors says, each with the
+            // rheology of the last (the phases kept); with
+            // rheologyPredictor, every pass but the last solves the
+            // momentum predictor alone
+            for (label rheologyCorr = 0; ; ++rheologyCorr)
             {
-                rAU.clear();
-            }
+                const bool lastPass =
+                    rheologyCorr >= coupling.nRheologyCorrectors();
 
-            // Closed domains: p levelled on the air (p - rho^a g.x =
-            // pRefValue on average over it)
-            if (p_rgh.needReference())
-            {
-                mixture.levelPressure(p, p_rgh, pRefValue);
+                addProfiling(momentum, "granular::UEqn");
+                #include "UEqn.H"
+                endProfiling(momentum);
+
+                if (lastPass || !coupling.rheologyPredictor())
+                {
+                    #include "pressureCoupling.H"
+
+                    if (!correctPhi)
+                    {
+                        rAU.clear();
+                    }
+
+                    // Closed domains: p levelled on the air (p - rho^a g.x
+                    // = pRefValue on average over it)
+                    if (p_rgh.needReference())
+                    {
+                        mixture.levelPressure(p, p_rgh, pRefValue);
+                    }
+                }
+
+                if (lastPass)
+                {
+                    break;
+                }
+
+                addProfiling(rheology, "granular::rheologyCorrector");
+                mixture.correctRheology(p, p_rgh.needReference());
+                endProfiling(rheology);
             }
         }
 

@@ -48,6 +48,8 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     coupling_(pressureCoupling::PISO),
     transpose_(transposeStress::full),
     tolerance_(0),
+    nRheologyCorrectors_(0),
+    rheologyPredictor_(false),
     corr_(0),
     final_(false),
     nextFinal_(false),
@@ -149,6 +151,23 @@ void Foam::granularCoupling::read()
     if (nCorr < 1)
     {
         granularInput::invalid(dict, "nCorrectors", nCorr, ">= 1");
+    }
+
+    nRheologyCorrectors_ =
+        dict.getOrDefault<label>("nRheologyCorrectors", 0);
+    rheologyPredictor_ = dict.getOrDefault<bool>("rheologyPredictor", false);
+    if (rheologyPredictor_ && !pimple_.momentumPredictor())
+    {
+        FatalIOErrorInFunction(dict)
+            << "rheologyPredictor yes needs momentumPredictor yes"
+            << exit(FatalIOError);
+    }
+    if (nRheologyCorrectors_ < 0)
+    {
+        granularInput::invalid
+        (
+            dict, "nRheologyCorrectors", nRheologyCorrectors_, ">= 0"
+        );
     }
 
     tolerance_ = dict.getOrDefault<scalar>("pRghTolerance", 0);
