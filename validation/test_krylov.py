@@ -104,3 +104,72 @@ def test_krylov_final_settings_take_the_final_outer_iteration(base,
                       final)
         assert final.startswith("Krylov coupling: PISO, 1 iterations ") \
             and m and float(m.group(1)) == 1e-9, final
+
+
+KRYLOV_LINE = (r"^Krylov coupling: (\w+), (\d+) iterations \(\d+ of the inner "
+               r"solvers\), residual (\S+) -> (\S+) m/s, (\S+) of the RMS "
+               r"speed(.*)$")
+
+
+def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
+    """nRheologyCorrectors 3 solves the momentum and pressure equations
+    four times a step, each pass from the last one's velocity with the
+    rheology evaluated again: a pass starts from a residual above the one
+    the last pass ended at (the viscosity changed) and the changes shrink
+    from pass to pass (the Picard iteration on the rheology contracts,
+    by about half a pass on this drum).
+    Krylov's settings serve the passes before the last, KrylovFinal's the
+    last."""
+    edits = krylov("BFBt", 300, "1e-9") + [
+        (r"nOuterCorrectors\s+\d+;",
+         "nOuterCorrectors    1;\n    nRheologyCorrectors 3;"),
+        (r"Krylov \{", "KrylovFinal { preconditioner CahouetChabard; "
+                       "maxIter 300; tolerance 1e-10; }\n    Krylov {")]
+    _, log = _run(base, tmp_path, "rheologyCorrectors", edits)
+    lines = re.findall(KRYLOV_LINE, log, re.M)
+    assert len(lines) == 4 * STEPS, log[-3000:]
+    for step in range(STEPS):
+        passes = lines[4 * step:4 * step + 4]
+        assert [p[0] for p in passes] == ["BFBt"] * 3 + ["CahouetChabard"], \
+            passes
+        assert all(float(p[4]) <= 1e-9 and not p[5] for p in passes[:3]), \
+            passes
+        assert float(passes[3][4]) <= 1e-10 and not passes[3][5], passes
+        start = [float(p[2]) for p in passes]
+        end = [float(p[3]) for p in passes]
+        print(f"step {step + 1}: residuals at the start of the passes "
+              f"{start}, at their ends {end}")
+        # Each later pass starts above where the last one ended ...
+        assert all(s > 100 * e for s, e in zip(start[1:], end[:-1])), \
+            (start, end)
+        # ... and the rheology's changes shrink from pass to pass (by
+        # about half a pass once the drum turns, slower in the first step)
+        assert start[1] > start[2] > start[3], start
+        assert start[3] < 0.75 * start[1], start
+
+
+def test_rheology_predictor_approaches_the_coupled_corrector(base,
+                                                             tmp_path):
+    """rheologyCorrector predictor solves the Krylov coupling in the first
+    pass only (one Krylov line a step) and then the momentum predictor with
+    the new rheology and one PISO corrector: its velocity lies nearer the
+    coupled corrector's (the Krylov coupling solved again) than a step
+    without the corrector does."""
+    cases = {}
+    for name, extra in [("none", ""), ("coupled", "nRheologyCorrectors 1;"),
+                        ("predictor", "nRheologyCorrectors 1; "
+                                      "rheologyCorrector predictor;")]:
+        edits = krylov("CahouetChabard", 300, "1e-9") + [
+            (r"nOuterCorrectors\s+\d+;", "nOuterCorrectors    1;\n    "
+             + extra)]
+        cases[name], log = _run(base, tmp_path, f"corrector-{name}", edits)
+        lines = re.findall(KRYLOV_LINE, log, re.M)
+        per_step = {"none": 1, "coupled": 2, "predictor": 1}[name]
+        assert len(lines) == per_step * STEPS, (name, log[-3000:])
+    u = {name: read_field(case, END, "U") for name, case in cases.items()}
+    d_none = _rel(u["none"], u["coupled"])
+    d_pred = _rel(u["predictor"], u["coupled"])
+    print(f"U against the coupled corrector's: without a corrector "
+          f"{d_none:.2e}, predictor {d_pred:.2e}")
+    assert d_none > 1e-6, d_none
+    assert d_pred < 0.5 * d_none, (d_pred, d_none)

@@ -161,9 +161,7 @@ int main(int argc, char *argv[])
 
             // The momentum equation and the pressure coupling, then as many
             // passes again as nRheologyCorrectors says, each with the
-            // rheology of the last (the phases kept); with
-            // rheologyPredictor, every pass but the last solves the
-            // momentum predictor alone
+            // rheology of the last (the phases kept)
             for (label rheologyCorr = 0; ; ++rheologyCorr)
             {
                 const bool lastPass =
@@ -173,21 +171,18 @@ int main(int argc, char *argv[])
                 #include "UEqn.H"
                 endProfiling(momentum);
 
-                if (lastPass || !coupling.rheologyPredictor())
+                #include "pressureCoupling.H"
+
+                if (!correctPhi)
                 {
-                    #include "pressureCoupling.H"
+                    rAU.clear();
+                }
 
-                    if (!correctPhi)
-                    {
-                        rAU.clear();
-                    }
-
-                    // Closed domains: p levelled on the air (p - rho^a g.x
-                    // = pRefValue on average over it)
-                    if (p_rgh.needReference())
-                    {
-                        mixture.levelPressure(p, p_rgh, pRefValue);
-                    }
+                // Closed domains: p levelled on the air (p - rho^a g.x =
+                // pRefValue on average over it)
+                if (p_rgh.needReference())
+                {
+                    mixture.levelPressure(p, p_rgh, pRefValue);
                 }
 
                 if (lastPass)

@@ -32,6 +32,14 @@ Foam::granularCoupling::transposeStressNames
 });
 
 
+const Foam::Enum<Foam::granularCoupling::rheologyCorrector>
+Foam::granularCoupling::rheologyCorrectorNames
+({
+    { rheologyCorrector::coupled, "coupled" },
+    { rheologyCorrector::predictor, "predictor" },
+});
+
+
 const Foam::Enum<Foam::granularCoupling::viscousStress>
 Foam::granularCoupling::viscousStressNames
 ({
@@ -49,7 +57,7 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     transpose_(transposeStress::full),
     tolerance_(0),
     nRheologyCorrectors_(0),
-    rheologyPredictor_(false),
+    rheologyCorrector_(rheologyCorrector::coupled),
     corr_(0),
     final_(false),
     nextFinal_(false),
@@ -155,19 +163,25 @@ void Foam::granularCoupling::read()
 
     nRheologyCorrectors_ =
         dict.getOrDefault<label>("nRheologyCorrectors", 0);
-    rheologyPredictor_ = dict.getOrDefault<bool>("rheologyPredictor", false);
-    if (rheologyPredictor_ && !pimple_.momentumPredictor())
-    {
-        FatalIOErrorInFunction(dict)
-            << "rheologyPredictor yes needs momentumPredictor yes"
-            << exit(FatalIOError);
-    }
     if (nRheologyCorrectors_ < 0)
     {
         granularInput::invalid
         (
             dict, "nRheologyCorrectors", nRheologyCorrectors_, ">= 0"
         );
+    }
+
+    rheologyCorrector_ = granularInput::readEnum
+    (
+        dict, "rheologyCorrector", rheologyCorrectorNames,
+        rheologyCorrector::coupled
+    );
+    if (rheologyCorrector_ == rheologyCorrector::predictor && !Krylov())
+    {
+        FatalIOErrorInFunction(dict)
+            << "rheologyCorrector predictor needs pressureCoupling Krylov, "
+            << "not " << pressureCouplingNames[coupling_]
+            << exit(FatalIOError);
     }
 
     tolerance_ = dict.getOrDefault<scalar>("pRghTolerance", 0);

@@ -280,10 +280,12 @@ void Foam::granularKrylovCoupling::solve
 (
     const frozenStep& step,
     volVectorField& U,
-    volScalarField& p_rgh
+    volScalarField& p_rgh,
+    const bool lastPass
 )
 {
-    const settings& set = pimple_.finalIter() ? finalSettings_ : settings_;
+    const settings& set =
+        pimple_.finalIter() && lastPass ? finalSettings_ : settings_;
 
     KrylovStep ks(step, U, p_rgh, set.schur, set.innerRelTol);
 
