@@ -160,13 +160,6 @@ CASES = [
     ("negative-rheology-correctors", FV, r"nCorrectors         (\d+);",
      "nCorrectors         \\1;\n    nRheologyCorrectors -1;",
      ["fvSolution", "nRheologyCorrectors", "-1"]),
-    ("unknown-rheology-corrector", FV, r"nOuterCorrectors    1;",
-     "nOuterCorrectors    1;\n    rheologyCorrector   both;",
-     ["fvSolution", "rheologyCorrector", "both", "predictor"]),
-    ("rheology-predictor-without-krylov", FV, r"nOuterCorrectors    1;",
-     "nOuterCorrectors    1;\n    pressureCoupling    PISO;\n"
-     "    rheologyCorrector   predictor;",
-     ["fvSolution", "rheologyCorrector", "predictor", "Krylov", "PISO"]),
     ("zero-max-sub-cycles", FV, r"maxAlphaSubCycles 5;",
      "maxAlphaSubCycles 0;",
      ["fvSolution", "maxAlphaSubCycles", "0"]),

@@ -116,13 +116,15 @@ def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
     four times a step, each pass from the last one's velocity with the
     rheology evaluated again: a pass starts from a residual above the one
     the last pass ended at (the viscosity changed) and the changes shrink
-    from pass to pass (the Picard iteration on the rheology contracts,
-    by about half a pass on this drum).
+    from pass to pass (the Picard iteration on the rheology contracts).
     Krylov's settings serve the passes before the last, KrylovFinal's the
-    last."""
+    last.  Without the explicit transpose stress (transposeStress none),
+    which a pass would update from the new velocity as well, the rheology
+    is all that changes between passes."""
     edits = krylov("BFBt", 300, "1e-9") + [
         (r"nOuterCorrectors\s+\d+;",
-         "nOuterCorrectors    1;\n    nRheologyCorrectors 3;"),
+         "nOuterCorrectors    1;\n    nRheologyCorrectors 3;\n"
+         "    transposeStress     none;"),
         (r"Krylov \{", "KrylovFinal { preconditioner CahouetChabard; "
                        "maxIter 300; tolerance 1e-10; }\n    Krylov {")]
     _, log = _run(base, tmp_path, "rheologyCorrectors", edits)
@@ -142,34 +144,9 @@ def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
         # Each later pass starts above where the last one ended ...
         assert all(s > 100 * e for s, e in zip(start[1:], end[:-1])), \
             (start, end)
-        # ... and the rheology's changes shrink from pass to pass (by
-        # about half a pass once the drum turns, slower in the first step)
+        # ... and the rheology's changes shrink from pass to pass (by a
+        # factor of 5-20 a pass here)
         assert start[1] > start[2] > start[3], start
-        assert start[3] < 0.75 * start[1], start
+        assert start[3] < 0.1 * start[1], start
 
 
-def test_rheology_predictor_approaches_the_coupled_corrector(base,
-                                                             tmp_path):
-    """rheologyCorrector predictor solves the Krylov coupling in the first
-    pass only (one Krylov line a step) and then the momentum predictor with
-    the new rheology and one PISO corrector: its velocity lies nearer the
-    coupled corrector's (the Krylov coupling solved again) than a step
-    without the corrector does."""
-    cases = {}
-    for name, extra in [("none", ""), ("coupled", "nRheologyCorrectors 1;"),
-                        ("predictor", "nRheologyCorrectors 1; "
-                                      "rheologyCorrector predictor;")]:
-        edits = krylov("CahouetChabard", 300, "1e-9") + [
-            (r"nOuterCorrectors\s+\d+;", "nOuterCorrectors    1;\n    "
-             + extra)]
-        cases[name], log = _run(base, tmp_path, f"corrector-{name}", edits)
-        lines = re.findall(KRYLOV_LINE, log, re.M)
-        per_step = {"none": 1, "coupled": 2, "predictor": 1}[name]
-        assert len(lines) == per_step * STEPS, (name, log[-3000:])
-    u = {name: read_field(case, END, "U") for name, case in cases.items()}
-    d_none = _rel(u["none"], u["coupled"])
-    d_pred = _rel(u["predictor"], u["coupled"])
-    print(f"U against the coupled corrector's: without a corrector "
-          f"{d_none:.2e}, predictor {d_pred:.2e}")
-    assert d_none > 1e-6, d_none
-    assert d_pred < 0.5 * d_none, (d_pred, d_none)

@@ -32,14 +32,6 @@ Foam::granularCoupling::transposeStressNames
 });
 
 
-const Foam::Enum<Foam::granularCoupling::rheologyCorrector>
-Foam::granularCoupling::rheologyCorrectorNames
-({
-    { rheologyCorrector::coupled, "coupled" },
-    { rheologyCorrector::predictor, "predictor" },
-});
-
-
 const Foam::Enum<Foam::granularCoupling::viscousStress>
 Foam::granularCoupling::viscousStressNames
 ({
@@ -57,7 +49,6 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     transpose_(transposeStress::full),
     tolerance_(0),
     nRheologyCorrectors_(0),
-    rheologyCorrector_(rheologyCorrector::coupled),
     corr_(0),
     final_(false),
     nextFinal_(false),
@@ -169,19 +160,6 @@ void Foam::granularCoupling::read()
         (
             dict, "nRheologyCorrectors", nRheologyCorrectors_, ">= 0"
         );
-    }
-
-    rheologyCorrector_ = granularInput::readEnum
-    (
-        dict, "rheologyCorrector", rheologyCorrectorNames,
-        rheologyCorrector::coupled
-    );
-    if (rheologyCorrector_ == rheologyCorrector::predictor && !Krylov())
-    {
-        FatalIOErrorInFunction(dict)
-            << "rheologyCorrector predictor needs pressureCoupling Krylov, "
-            << "not " << pressureCouplingNames[coupling_]
-            << exit(FatalIOError);
     }
 
     tolerance_ = dict.getOrDefault<scalar>("pRghTolerance", 0);
