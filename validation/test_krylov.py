@@ -148,5 +148,3 @@ def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
         # factor of 5-20 a pass here)
         assert start[1] > start[2] > start[3], start
         assert start[3] < 0.1 * start[1], start
-
-
