@@ -235,21 +235,23 @@ def test_unread_phase_file_warns(base, tmp_path):
     assert "alpha.small" in warnings[0], warnings[0]
 
 
-def test_cahouet_chabard_needs_euler(base, tmp_path):
-    """The Krylov coupling's CahouetChabard preconditioner takes rho/dt of
-    the Euler time derivative: with another ddt scheme the solver stops
-    at its first use with a FatalIOError naming fvSchemes, the
-    preconditioner and the scheme."""
-    case = tmp_path / "cahouet-chabard-backward"
+def test_cahouet_chabard_needs_euler_or_backward(base, tmp_path):
+    """The Krylov coupling's CahouetChabard preconditioner takes the
+    coefficient of rho/dt of the Euler or the backward time derivative:
+    with another ddt scheme the solver stops at its first use with a
+    FatalIOError naming fvSchemes, the preconditioner and the scheme."""
+    case = tmp_path / "cahouet-chabard-crank-nicolson"
     shutil.copytree(base, case)
     edit(case / FV, [(r"nCorrectors         \d+;",
                       "nCorrectors         1;\n    pressureCoupling    Krylov;"
                       "\n    Krylov { preconditioner CahouetChabard; }")])
-    edit(case / "system/fvSchemes", [(r"default Euler;", "default backward;")])
+    edit(case / "system/fvSchemes",
+         [(r"default Euler;", "default CrankNicolson 0.9;")])
     before = {t: sorted(p.name for p in (case / t).iterdir())
               for t in time_names(case, field=None)}
-    _assert_refused(case, "cahouet-chabard-backward",
-                    ["fvSchemes", "CahouetChabard", "Euler", "backward"],
+    _assert_refused(case, "cahouet-chabard-crank-nicolson",
+                    ["fvSchemes", "CahouetChabard", "Euler or backward",
+                     "CrankNicolson"],
                     before)
 
 

@@ -167,6 +167,13 @@ int main(int argc, char *argv[])
                 const bool lastPass =
                     rheologyCorr >= coupling.nRheologyCorrectors();
 
+                // A later pass of the Krylov coupling starts from the last
+                // pass's velocity, closer to its solution than a momentum
+                // predictor with the last pass's pressure: no predictor
+                const bool momentumPredictor =
+                    pimple.momentumPredictor()
+                 && (rheologyCorr == 0 || !coupling.Krylov());
+
                 addProfiling(momentum, "granular::UEqn");
                 #include "UEqn.H"
                 endProfiling(momentum);

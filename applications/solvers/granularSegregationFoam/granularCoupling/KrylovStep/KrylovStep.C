@@ -119,28 +119,37 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::laplacianSolve
 }
 
 
-void Foam::KrylovStep::checkEuler() const
+Foam::scalar Foam::KrylovStep::ddtCoefficient() const
 {
     const ITstream& ddt = mesh_.ddtScheme("ddt(rho,U)");
     const word scheme
     (
         ddt.size() && ddt[0].isWord() ? ddt[0].wordToken() : word()
     );
-    if (scheme != "Euler")
+    if (scheme == "Euler")
     {
-        FatalIOErrorInFunction(mesh_.schemesDict())
-            << "ddtSchemes: the Krylov coupling's preconditioner "
-            << "CahouetChabard needs ddt(rho,U) Euler, not ";
-        if (scheme.size())
-        {
-            FatalIOError<< scheme;
-        }
-        else
-        {
-            FatalIOError<< ddt;
-        }
-        FatalIOError<< exit(FatalIOError);
+        return 1;
     }
+    if (scheme == "backward")
+    {
+        const Time& time = mesh_.time();
+        const scalar dt = time.deltaTValue();
+        return time.timeIndex() < 2 ? 1 : 1 + dt/(dt + time.deltaT0Value());
+    }
+
+    FatalIOErrorInFunction(mesh_.schemesDict())
+        << "ddtSchemes: the Krylov coupling's preconditioner "
+        << "CahouetChabard needs ddt(rho,U) Euler or backward, not ";
+    if (scheme.size())
+    {
+        FatalIOError<< scheme;
+    }
+    else
+    {
+        FatalIOError<< ddt;
+    }
+    FatalIOError<< exit(FatalIOError);
+    return 1;
 }
 
 
@@ -173,7 +182,8 @@ Foam::KrylovStep::inertialCoefficient() const
     A.primitiveFieldRef() = max
     (
         1.0/s_.rAU.primitiveField() - viscous,
-        s_.rho.primitiveField()/mesh_.time().deltaTValue()
+        // at least the time derivative's rho/dt
+        ddtCoefficient()*s_.rho.primitiveField()/mesh_.time().deltaTValue()
     );
     A.correctBoundaryConditions();
 
@@ -192,9 +202,6 @@ Foam::tmp<Foam::scalarField> Foam::KrylovStep::CahouetChabard
 {
     if (!Linertia_)
     {
-        // rho/dt, the floor of the inertia, is the Euler time derivative's
-        // coefficient
-        checkEuler();
         Linertia_ = laplacian(inertialCoefficient());
     }
     return solve(*Linertia_, r) - eta().primitiveField()*r;
