@@ -345,9 +345,17 @@ def coupling_settings(name):
     10 iterations; a suffix -tol1e-4 sets the tolerance, -inner1e-3
     innerRelTol); reference-N is the reference with N correctors, to
     measure how far the reference is from its own converged step;
-    tutorial: none, the case's own."""
+    tutorial: none, the case's own.  A named coupling is all of the step's
+    coupling: no rheology corrector and no KrylovFinal of the case's (None
+    removes the entry)."""
     if name == TUTORIAL_NAME:
         return {}
+    return dict(_coupling_entries(name), **{
+        "PIMPLE.nRheologyCorrectors": 0, "PIMPLE.KrylovFinal": None})
+
+
+def _coupling_entries(name):
+    """The entries that make the coupling name (coupling_settings)."""
     if name == REFERENCE_NAME:
         return dict(REFERENCE)
     m = re.fullmatch(r"reference-(\d+)", name)

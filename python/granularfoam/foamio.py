@@ -31,7 +31,11 @@ def run(case, *cmd, timeout=3600):
 
 
 def set_entry(case, dictionary, entry, value):
-    """foamDictionary -entry entry -set value on case/dictionary."""
+    """foamDictionary -entry entry -set value on case/dictionary; value
+    None removes the entry (-remove, nothing if it is not there)."""
+    if value is None:
+        run(case, "foamDictionary", "-entry", entry, "-remove", dictionary)
+        return
     run(case, "foamDictionary", "-entry", entry, "-set", str(value),
         dictionary)
 
