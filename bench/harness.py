@@ -354,6 +354,12 @@ def coupling_settings(name):
         "PIMPLE.nRheologyCorrectors": 0, "PIMPLE.KrylovFinal": None})
 
 
+def set_coupling(case, name):
+    """Set the coupling name (coupling_settings) in case's fvSolution."""
+    for entry, value in coupling_settings(name).items():
+        set_entry(case, "system/fvSolution", entry, value)
+
+
 def _coupling_entries(name):
     """The entries that make the coupling name (coupling_settings)."""
     if name == REFERENCE_NAME:
@@ -494,8 +500,7 @@ def run_steps(state, dt, steps, coupling, edits, debug=False):
                          ("writePrecision", 17),
                          ("timePrecision", 10), ("functions", "{}")):
         set_entry(case, "system/controlDict", entry, value)
-    for entry, value in coupling_settings(coupling).items():
-        set_entry(case, "system/fvSolution", entry, value)
+    set_coupling(case, coupling)
     if debug:
         set_entry(case, "system/controlDict", "DebugSwitches",
                   "{ granularKrylovCoupling 1; }")
@@ -723,8 +728,7 @@ def whole_chute(coupling, end_time, sub_cycles, max_delta_t, edits):
                         "processor*", "VTK", "figures", "movingFrame",
                         "decomposeParDict.np*"))
     set_entry(case, "system/chuteParameters", "endTime", end_time)
-    for entry, value in coupling_settings(coupling).items():
-        set_entry(case, "system/fvSolution", entry, value)
+    set_coupling(case, coupling)
     if sub_cycles is not None:
         apply_edit(case, "system/fvSolution", "maxAlphaSubCycles",
                    sub_cycles)
@@ -836,8 +840,7 @@ def whole_drum(source, start, coupling, edits, duration=None,
             shutil.copyfile(Path(files) / name, case / name)
     set_entry(case, "system/drumParameters", "endTime", end)
     set_entry(case, "system/drumParameters", "writeInterval", duration)
-    for entry, value in coupling_settings(coupling).items():
-        set_entry(case, "system/fvSolution", entry, value)
+    set_coupling(case, coupling)
     apply_edits(case, edits)
     print(f"harness: drum {case.name}: {len(ranks)} ranks, t = {start_name} "
           f"to {end:g} s", flush=True)

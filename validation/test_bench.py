@@ -124,7 +124,34 @@ def test_whole_runs_are_the_reference_and_the_tutorial_unchanged():
     assert tutorial["sub_cycles"] is None
     assert tutorial["max_delta_t"] is None
     assert harness.coupling_settings("PISO-20") == {
-        "PIMPLE.pressureCoupling": "PISO", "PIMPLE.nCorrectors": 20}
+        "PIMPLE.pressureCoupling": "PISO", "PIMPLE.nCorrectors": 20,
+        "PIMPLE.nRheologyCorrectors": 0, "PIMPLE.KrylovFinal": None}
+
+
+def test_a_named_coupling_is_the_whole_steps_coupling(tmp_path):
+    """A coupling the harness names replaces the case's: on the drum
+    tutorial's fvSolution, whose rheology corrector and KrylovFinal would
+    otherwise change the step, the reference's Krylov coupling leaves no
+    rheology corrector and no KrylovFinal; tutorial changes nothing."""
+    import harness
+    case = tmp_path / "case"
+    (case / "system").mkdir(parents=True)
+    fvSolution = case / "system" / "fvSolution"
+    text = (PROJECT / "tutorials" / "squareDrum" / "system"
+            / "fvSolution").read_text()
+    fvSolution.write_text(text)
+    assert generate.foam_value(fvSolution, "PIMPLE/nRheologyCorrectors") \
+        == "1"
+    assert "KrylovFinal" in text
+    harness.set_coupling(case, harness.TUTORIAL_NAME)
+    assert fvSolution.read_text() == text
+    harness.set_coupling(case, harness.DRUM_REFERENCE[0])
+    assert generate.foam_value(fvSolution, "PIMPLE/nRheologyCorrectors") \
+        == "0"
+    assert generate.foam_value(fvSolution, "PIMPLE/Krylov/maxIter") == "30"
+    assert generate.foam_value(fvSolution, "PIMPLE/Krylov/tolerance") \
+        == "0.001"
+    assert "KrylovFinal" not in fvSolution.read_text()
 
 
 def test_whole_run_status_keeps_to_one_table_row():
