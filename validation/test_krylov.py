@@ -39,19 +39,11 @@ def krylov(preconditioner, max_iter, tolerance, inner="1e-10"):
              f"innerRelTol {inner}; }}")]
 
 
-def _one_pass(case):
-    """The tutorial's fvSolution without its rheology corrector and
-    KrylovFinal: each test sets the whole coupling it tests."""
-    edit(case / FV, [(r"\n[ \t]*nRheologyCorrectors\s+\d+;", ""),
-                     (r"\n[ \t]*KrylovFinal\s*\{[^{}]*\}", "")])
-
-
 @pytest.fixture(scope="module")
 def base(foam_env):
     return small_drum("krylov/base", n=16, end_time=END, delta_t=f"{DT:g}",
                       controls=[(r"writePrecision  10;",
-                                 "writePrecision  17;")],
-                      prepare=_one_pass)
+                                 "writePrecision  17;")])
 
 
 def _run(base, tmp_path, name, edits, controls=()):
