@@ -6,6 +6,8 @@ from pathlib import Path
 
 import pytest
 
+from granularfoam.foamio import edit
+
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "bench"))
 import generate  # noqa: E402  (bench/ is not a package)
@@ -130,16 +132,20 @@ def test_whole_runs_are_the_reference_and_the_tutorial_unchanged():
 
 def test_a_named_coupling_is_the_whole_steps_coupling(tmp_path):
     """A coupling the harness names replaces the case's: on the drum
-    tutorial's fvSolution, whose rheology corrector and KrylovFinal would
-    otherwise change the step, the reference's Krylov coupling leaves no
-    rheology corrector and no KrylovFinal; tutorial changes nothing."""
+    tutorial's fvSolution with a rheology corrector and KrylovFinal, which
+    would otherwise change the step, the reference's Krylov coupling
+    leaves no rheology corrector and no KrylovFinal; tutorial changes
+    nothing."""
     import harness
     case = tmp_path / "case"
     (case / "system").mkdir(parents=True)
     fvSolution = case / "system" / "fvSolution"
-    text = (PROJECT / "tutorials" / "squareDrum" / "system"
-            / "fvSolution").read_text()
-    fvSolution.write_text(text)
+    fvSolution.write_text((PROJECT / "tutorials" / "squareDrum" / "system"
+                           / "fvSolution").read_text())
+    edit(fvSolution, [(r"(\n[ \t]*viscousStress\s+\w+;)",
+                       r"\n    nRheologyCorrectors 1;"
+                       r"\n    KrylovFinal { $Krylov; maxIter 2; }\1")])
+    text = fvSolution.read_text()
     assert generate.foam_value(fvSolution, "PIMPLE/nRheologyCorrectors") \
         == "1"
     assert "KrylovFinal" in text
