@@ -130,6 +130,17 @@ def test_whole_runs_are_the_reference_and_the_tutorial_unchanged():
         "PIMPLE.nRheologyCorrectors": 0, "PIMPLE.KrylovFinal": None}
 
 
+def _fv_solution_case(tmp_path, tutorial):
+    """A case in tmp_path with the tutorial's system/fvSolution alone:
+    (the case, its fvSolution)."""
+    case = tmp_path / "case"
+    (case / "system").mkdir(parents=True)
+    fvSolution = case / "system" / "fvSolution"
+    fvSolution.write_text((PROJECT / "tutorials" / tutorial / "system"
+                           / "fvSolution").read_text())
+    return case, fvSolution
+
+
 def test_a_named_coupling_is_the_whole_steps_coupling(tmp_path):
     """A coupling the harness names replaces the case's: on the drum
     tutorial's fvSolution with a rheology corrector and KrylovFinal, which
@@ -137,11 +148,7 @@ def test_a_named_coupling_is_the_whole_steps_coupling(tmp_path):
     leaves no rheology corrector and no KrylovFinal; tutorial changes
     nothing."""
     import harness
-    case = tmp_path / "case"
-    (case / "system").mkdir(parents=True)
-    fvSolution = case / "system" / "fvSolution"
-    fvSolution.write_text((PROJECT / "tutorials" / "squareDrum" / "system"
-                           / "fvSolution").read_text())
+    case, fvSolution = _fv_solution_case(tmp_path, "squareDrum")
     edit(fvSolution, [(r"(\n[ \t]*viscousStress\s+\w+;)",
                        r"\n    nRheologyCorrectors 1;"
                        r"\n    KrylovFinal { $Krylov; maxIter 2; }\1")])
@@ -177,11 +184,7 @@ def test_harness_edits_reach_the_phases_solver_entry(tmp_path):
     ("alpha.*"), which foamDictionary cannot scope; a count below 1 is
     refused."""
     import harness
-    case = tmp_path / "case"
-    (case / "system").mkdir(parents=True)
-    fvSolution = case / "system" / "fvSolution"
-    fvSolution.write_text((PROJECT / "tutorials" / "chute" / "system"
-                           / "fvSolution").read_text())
+    case, fvSolution = _fv_solution_case(tmp_path, "chute")
     harness.apply_edits(case, ["system/fvSolution:nLimiterIter=2",
                                "system/fvSolution:maxAlphaSubCycles=7"])
     assert generate.foam_value(fvSolution,
@@ -213,11 +216,7 @@ def test_harness_edits_replace_a_regex_keyed_solver_entry(tmp_path):
     regular expression that is not there and a value that is not a
     dictionary are refused."""
     import harness
-    case = tmp_path / "case"
-    (case / "system").mkdir(parents=True)
-    fvSolution = case / "system" / "fvSolution"
-    fvSolution.write_text((PROJECT / "tutorials" / "squareDrum" / "system"
-                           / "fvSolution").read_text())
+    case, fvSolution = _fv_solution_case(tmp_path, "squareDrum")
     harness.apply_edits(case, [
         'system/fvSolution:solvers."(U|UFinal)"={ solver GAMG; '
         'smoother GaussSeidel; tolerance 1e-10; relTol 0.1; }'])
