@@ -63,6 +63,17 @@ def _rel(a, b):
     return float(np.linalg.norm(a - b) / np.linalg.norm(b))
 
 
+def _assert_at_piso_200(case, ref, what, iterations):
+    """U and p of case at the end within 1e-6 (relative L2) of ref's, the
+    200 PISO correctors'."""
+    du = _rel(read_field(case, END, "U"), read_field(ref, END, "U"))
+    dp = _rel(read_field(case, END, "p"), read_field(ref, END, "p"))
+    print(f"{what} against PISO-200: U {du:.2e}, p {dp:.2e}; "
+          f"iterations per step {iterations}")
+    assert du < 1e-6, f"U differs from PISO-200 by {du:.3e}"
+    assert dp < 1e-6, f"p differs from PISO-200 by {dp:.3e}"
+
+
 def test_krylov_reaches_the_piso_fixed_point(base, tmp_path):
     ref, _ = _run(base, tmp_path, "piso200", PISO_200)
     case, log = _run(base, tmp_path, "krylov", krylov("BFBt", 300, "1e-9"))
@@ -73,12 +84,8 @@ def test_krylov_reaches_the_piso_fixed_point(base, tmp_path):
     assert len(steps) == STEPS, log[-3000:]
     assert all(float(r) <= 1e-9 for _, _, _, r in steps), steps
 
-    du = _rel(read_field(case, END, "U"), read_field(ref, END, "U"))
-    dp = _rel(read_field(case, END, "p"), read_field(ref, END, "p"))
-    print(f"Krylov (BFBt, 1e-9) against PISO-200: U {du:.2e}, p {dp:.2e}; "
-          f"iterations per step {[int(n) for n, _, _, _ in steps]}")
-    assert du < 1e-6, f"U differs from PISO-200 by {du:.3e}"
-    assert dp < 1e-6, f"p differs from PISO-200 by {dp:.3e}"
+    _assert_at_piso_200(case, ref, "Krylov (BFBt, 1e-9)",
+                        [int(n) for n, _, _, _ in steps])
 
 
 def test_cahouet_chabard_with_backward_reaches_the_piso_fixed_point(
@@ -104,13 +111,8 @@ def test_cahouet_chabard_with_backward_reaches_the_piso_fixed_point(
     assert all(p[0] == "CahouetChabard" and float(p[4]) <= 1e-9
                and not p[5] for p in steps), steps
 
-    du = _rel(read_field(case, END, "U"), read_field(ref, END, "U"))
-    dp = _rel(read_field(case, END, "p"), read_field(ref, END, "p"))
-    print(f"Krylov (Cahouet-Chabard, backward, 1e-9) against PISO-200: "
-          f"U {du:.2e}, p {dp:.2e}; iterations per step "
-          f"{[int(p[1]) for p in steps]}")
-    assert du < 1e-6, f"U differs from PISO-200 by {du:.3e}"
-    assert dp < 1e-6, f"p differs from PISO-200 by {dp:.3e}"
+    _assert_at_piso_200(case, ref, "Krylov (Cahouet-Chabard, backward, 1e-9)",
+                        [int(p[1]) for p in steps])
 
 
 def test_krylov_says_when_not_converged(base, tmp_path):
