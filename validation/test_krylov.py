@@ -11,7 +11,7 @@ import shutil
 import numpy as np
 import pytest
 
-from cases import edit, run, small_drum
+from cases import edit, fresh_case, run, small_drum
 from granularfoam.foamio import read_field
 
 pytestmark = pytest.mark.smoke
@@ -191,3 +191,40 @@ def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
         # factor of 5-20 a pass here)
         assert start[1] > start[2] > start[3], start
         assert start[3] < 0.1 * start[1], start
+
+
+def test_the_step_starts_from_the_last_pressure(foam_env, tmp_path):
+    """startPressure p (the default) starts the step from the last pressure
+    p where the transport changed the density (p_rgh -= (rho - rho_0) gh):
+    the chute on 40 x 16 cells from rest to 0.3 s, the grains' front
+    crossing cells every step, the Krylov coupling's initial residual is a
+    fraction of the one startPressure p_rgh (multiphaseInterFoam's
+    p_rgh kept) leaves, whose p_rgh jumps by (rho^g - rho^a) gh where the
+    surface moved (measured: a ninth, median over the steps after the
+    twentieth)."""
+    chute = fresh_case("chute", dest="krylov/startPressure", tutorial=True)
+    for key, value in (("nx", 40), ("nz", 16), ("endTime", 0.3),
+                       ("writeInterval", 0.3)):
+        edit(chute / "system" / "chuteParameters",
+             [(rf"\n{key}\s+[^;]+;", f"\n{key} {value};")])
+    shutil.copytree(chute / "0.orig", chute / "0")
+    assert run(["blockMesh"], chute).returncode == 0
+    residuals = {}
+    for start in ("p", "p_rgh"):
+        case = tmp_path / start
+        shutil.copytree(chute, case)
+        edit(case / FV, [(r"nCorrectors         (\d+);",
+                          f"nCorrectors         \\1;\n    startPressure "
+                          f"      {start};")])
+        res = run(["granularSegregationFoam"], case, timeout=600)
+        log = res.stdout + res.stderr
+        assert res.returncode == 0, log[-3000:]
+        assert (case / "0.3" / "U").is_file(), f"{case} did not write 0.3"
+        assert f"each step starts from the last {start}\n" in log
+        first = [float(m[2]) for m in re.findall(KRYLOV_LINE, log, re.M)]
+        assert len(first) > 40, len(first)
+        residuals[start] = np.median(first[20:])
+    ratio = residuals["p_rgh"] / residuals["p"]
+    print(f"median initial residual: p {residuals['p']:.3g}, "
+          f"p_rgh {residuals['p_rgh']:.3g} m/s ({ratio:.1f} times)")
+    assert ratio > 3, residuals

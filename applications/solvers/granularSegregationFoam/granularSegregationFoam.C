@@ -147,8 +147,10 @@ int main(int argc, char *argv[])
                 mixture.correctRheology(p, p_rgh.needReference());
             }
             addProfiling(transport, "granular::phases");
+            const scalarField rho0(rho.primitiveField());
             mixture.solve();
             rho = mixture.rho();
+            coupling.keepPressure(p_rgh, rho, rho0, gh);
             endProfiling(transport);
 
             // The face forces of (4.1) besides the pressure gradient:

@@ -40,6 +40,14 @@ Foam::granularCoupling::viscousStressNames
 });
 
 
+const Foam::Enum<Foam::granularCoupling::startPressure>
+Foam::granularCoupling::startPressureNames
+({
+    { startPressure::p, "p" },
+    { startPressure::p_rgh, "p_rgh" },
+});
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
@@ -47,6 +55,7 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     pimple_(pimple),
     coupling_(pressureCoupling::PISO),
     transpose_(transposeStress::full),
+    start_(startPressure::p),
     tolerance_(0),
     nRheologyCorrectors_(0),
     corr_(0),
@@ -71,7 +80,8 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
             << tolerance_;
     }
     Info<< "; transpose stress " << transposeStressNames[transpose_]
-        << nl << endl;
+        << "; each step starts from the last "
+        << startPressureNames[start_] << nl << endl;
 
     // Too few PISO correctors for the implicit stress (class description)
     const bool implicitStress =
@@ -146,6 +156,11 @@ void Foam::granularCoupling::read()
         dict, "transposeStress", transposeStressNames, transposeStress::full
     );
 
+    start_ = granularInput::readEnum
+    (
+        dict, "startPressure", startPressureNames, startPressure::p
+    );
+
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
     if (nCorr < 1)
     {
@@ -170,6 +185,22 @@ void Foam::granularCoupling::read()
             dict, "pRghTolerance", tolerance_,
             "0 <= pRghTolerance < 1; 0: run every corrector"
         );
+    }
+}
+
+
+void Foam::granularCoupling::keepPressure
+(
+    volScalarField& p_rgh,
+    const volScalarField& rho,
+    const scalarField& rho0,
+    const volScalarField& gh
+) const
+{
+    if (start_ == startPressure::p)
+    {
+        p_rgh.primitiveFieldRef() -=
+            (rho.primitiveField() - rho0)*gh.primitiveField();
     }
 }
 
