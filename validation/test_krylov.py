@@ -194,7 +194,7 @@ def test_rheology_correctors_iterate_the_viscosity(base, tmp_path):
 
 
 def test_the_step_starts_from_the_last_pressure(foam_env, tmp_path):
-    """startPressure p (the default) starts the step from the last pressure
+    """startPressure p starts the step from the last pressure
     p where the transport changed the density (p_rgh -= (rho - rho_0) gh):
     the chute on 40 x 16 cells from rest to 0.3 s, the grains' front
     crossing cells every step, the Krylov coupling's initial residual is a

@@ -55,7 +55,7 @@ Foam::granularCoupling::granularCoupling(const pimpleControl& pimple)
     pimple_(pimple),
     coupling_(pressureCoupling::PISO),
     transpose_(transposeStress::full),
-    start_(startPressure::p),
+    start_(startPressure::p_rgh),
     tolerance_(0),
     nRheologyCorrectors_(0),
     corr_(0),
@@ -158,7 +158,7 @@ void Foam::granularCoupling::read()
 
     start_ = granularInput::readEnum
     (
-        dict, "startPressure", startPressureNames, startPressure::p
+        dict, "startPressure", startPressureNames, startPressure::p_rgh
     );
 
     const label nCorr = dict.getOrDefault<label>("nCorrectors", 1);
