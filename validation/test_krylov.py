@@ -11,7 +11,7 @@ import shutil
 import numpy as np
 import pytest
 
-from cases import edit, fresh_case, run, small_drum
+from cases import edit, fresh_case, run, set_entry, small_drum
 from granularfoam.foamio import read_field
 
 pytestmark = pytest.mark.smoke
@@ -205,17 +205,14 @@ def test_the_step_starts_from_the_last_pressure(foam_env, tmp_path):
     chute = fresh_case("chute", dest="krylov/startPressure", tutorial=True)
     for key, value in (("nx", 40), ("nz", 16), ("endTime", 0.3),
                        ("writeInterval", 0.3)):
-        edit(chute / "system" / "chuteParameters",
-             [(rf"\n{key}\s+[^;]+;", f"\n{key} {value};")])
+        set_entry(chute, "system/chuteParameters", key, value)
     shutil.copytree(chute / "0.orig", chute / "0")
     assert run(["blockMesh"], chute).returncode == 0
     residuals = {}
     for start in ("p", "p_rgh"):
         case = tmp_path / start
         shutil.copytree(chute, case)
-        edit(case / FV, [(r"nCorrectors         (\d+);",
-                          f"nCorrectors         \\1;\n    startPressure "
-                          f"      {start};")])
+        set_entry(case, FV, "PIMPLE.startPressure", start)
         res = run(["granularSegregationFoam"], case, timeout=600)
         log = res.stdout + res.stderr
         assert res.returncode == 0, log[-3000:]
